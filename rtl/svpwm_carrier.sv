@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: Apache-2.0
+// svpwm_carrier: up/down (centre-aligned) carrier counter 0 -> P -> 0, one step per clock.
+// Parameters: CntWidth - counter / period width in bits.
+// f_sw = f_clk / (2 * period): the count runs 0,1,..,P-1 (counting up) then P,P-1,..,1 (counting down).
+// Latency: none, count_o / up_o are the registers. The period is taken only at the valley: it loads
+// in the cycle load_o is high (the last cycle before a valley, or any idle cycle) and is active from
+// the valley on, so a period never changes in mid-carrier (Minas sec. III-A: WG_COUNTER/WG_RELOAD).
+// Restrictions: period_i >= 1 (svpwm_core clamps it to MinPeriod).
+`default_nettype none
+
+module svpwm_carrier #(
+  parameter int CntWidth = 16
+) (
+  input  logic                clk_i,       // core clock
+  input  logic                rst_ni,      // asynchronous reset, active low
+  input  logic                run_i,       // count while high; while low hold at the valley (0, up)
+  input  logic [CntWidth-1:0] period_i,    // next half period in clocks, loaded when load_o is high
+  output logic [CntWidth-1:0] count_o,     // carrier value, 0..period_o
+  output logic                up_o,        // 1 while counting up (count 0..P-1), 0 while down (P..1)
+  output logic [CntWidth-1:0] period_o,    // active half period
+  output logic                valley_o,    // running and count == 0: first cycle of a carrier period
+  output logic                peak_o,      // running and count == period: the middle of the period
+  output logic                load_o       // shadow load strobe: the next cycle is a valley (or idle)
+);
+
+  if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
+    initial $fatal(1, "svpwm_carrier: CntWidth must be 8..16, got %0d", CntWidth);
+  end
+
+  logic [CntWidth-1:0] count_d, count_q, period_d, period_q;
+  logic                up_d, up_q;
+
+  assign load_o = !run_i || (!up_q && count_q == CntWidth'(1));
+
+  always_comb begin
+    count_d  = count_q;
+    up_d     = up_q;
+    period_d = load_o ? period_i : period_q;
+    if (!run_i) begin
+      count_d = '0;
+      up_d    = 1'b1;
+    end else begin
+      count_d = up_q ? count_q + 1'b1 : count_q - 1'b1;
+      if (up_q && count_q == period_q - 1'b1) up_d = 1'b0;
+      if (!up_q && count_q == CntWidth'(1))   up_d = 1'b1;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      count_q  <= '0;
+      up_q     <= 1'b1;
+      period_q <= CntWidth'(1);
+    end else begin
+      count_q  <= count_d;
+      up_q     <= up_d;
+      period_q <= period_d;
+    end
+  end
+
+  assign count_o  = count_q;
+  assign up_o     = up_q;
+  assign period_o = period_q;
+  assign valley_o = run_i && up_q && count_q == '0;
+  assign peak_o   = run_i && !up_q && count_q == period_q;
+
+`ifdef FORMAL
+  logic f_past_valid = 1'b0;
+  always_ff @(posedge clk_i) f_past_valid <= 1'b1;
+  always_comb if (!f_past_valid) assume (!rst_ni);
+  always_comb assume (period_i != '0);
+  // the carrier never leaves [0, period]
+  always_comb if (rst_ni) assert (count_q <= period_q);
+  always_comb if (rst_ni && up_q) assert (count_q < period_q || period_q == '0);
+  // the period only changes at a valley (or while idle)
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && period_q != $past(period_q))
+    assert (count_q == '0 && up_q);
+  always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
+`endif
+
+endmodule
+
+`default_nettype wire

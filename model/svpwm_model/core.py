@@ -32,6 +32,7 @@ class Inputs:
     m: int = 0              # UQ1.15
     period: int = 1536      # half period, clocks
     dt: int = 0             # dead time, clocks
+    mp: int = 0             # minimum gate pulse, clocks
 
 
 @dataclass
@@ -40,6 +41,7 @@ class Run:
     valley: list[int] = field(default_factory=list)      # t_n, n = 0..N (t_N: the valley after the last)
     period: list[int] = field(default_factory=list)      # P_n
     dt: list[int] = field(default_factory=list)          # dead time active in period n
+    mp: list[int] = field(default_factory=list)          # minimum pulse active in period n
     cmp: list[tuple[int, int, int] | None] = field(default_factory=list)   # (C_a, C_b, C_c), None for n = 0
     sector: list[int | None] = field(default_factory=list)                 # sector of the compare values
     theta: list[int | None] = field(default_factory=list)  # exact full angle (sector*2^W + angle) used
@@ -69,7 +71,7 @@ class CoreModel:
 
     def __init__(self, sector: int = 0, angle: int = 0):
         self.theta = (sector << fixed.PHASE_WIDTH) + angle      # full angle, units 60deg / 2^PHASE_WIDTH
-        self.legs = [LegState(0, 0, (1 << fixed.DT_WIDTH) - 1) for _ in range(3)]
+        self.legs = [LegState(0, 0, 0) for _ in range(3)]     # reset: off, dead time counts from release
 
     def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
             stop: int | None = None) -> Run:
@@ -82,8 +84,9 @@ class CoreModel:
         get = inputs if callable(inputs) else (lambda n: inputs[n])
         full = 6 << fixed.PHASE_WIDTH
         r = Run()
-        p_cur, _ = fixed.clamp_period(idle.period)
-        dt_cur, f_cur = idle.dt, idle.freq
+        p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp)
+        dt_cur, mp_cur = idle.dt, idle.mp
+        f_cur, _ = fixed.clamp_freq(idle.freq)
         t, theta = 0, self.theta
         cmp_cur: tuple[int, int, int] | None = None
         pole_hi: list[list[tuple[int, int]]] = [[], [], []]   # high intervals per phase
@@ -93,6 +96,7 @@ class CoreModel:
                 break
             r.period.append(p_cur)
             r.dt.append(dt_cur)
+            r.mp.append(mp_cur)
             r.cmp.append(cmp_cur)
             if cmp_cur is not None:
                 for ph, c in enumerate(cmp_cur):
@@ -101,19 +105,20 @@ class CoreModel:
             # peak of period n: the angle has advanced P_n clocks at f_cur since the valley
             theta = (theta + f_cur * p_cur) % full
             u = get(n)
-            p_next, _ = fixed.clamp_period(u.period)
+            p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp)
             m_next, _ = fixed.clamp_m(u.m)
             sector, angle = theta >> fixed.PHASE_WIDTH, theta & ((1 << fixed.PHASE_WIDTH) - 1)
             a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
-            cmp_next = fixed.compare_values(sector, a16, m_next, p_next)
+            cmp_next = tuple(fixed.snap_min_pulse(c, p_next, u.dt + u.mp)
+                             for c in fixed.compare_values(sector, a16, m_next, p_next))
             r.sector.append(sector)
             r.theta.append(theta)
             r.m.append(m_next)
-            f_cur = u.freq
+            f_cur, _ = fixed.clamp_freq(u.freq)
             # rest of period n (peak to next valley): P_n clocks at the new frequency
             theta = (theta + f_cur * p_cur) % full
             t += 2 * p_cur
-            p_cur, dt_cur, cmp_cur = p_next, u.dt, cmp_next
+            p_cur, dt_cur, mp_cur, cmp_cur = p_next, u.dt, u.mp, cmp_next
         t_end = t
         # the sector/theta/m lists describe the compare values of the NEXT period; shift them so that
         # index n describes period n (None for period 0)
@@ -153,7 +158,7 @@ class CoreModel:
                 lst += [(a, 1), (b, 0)]
             pole_ch[ph] = [(c, v) for c, v in lst if c < end]
         r.pole_edges = _merge(pole_ch, 3)
-        # ---- gates: target per leg, piecewise constant; dead time changes at valleys ----
+        # ---- gates: target per leg, piecewise constant; dead time and minimum pulse change at valleys ----
         valid_from = r.valley[1] + 1 if n_periods >= 1 else end      # pole_valid_q
         gate_ch: dict[int, list[tuple[int, int]]] = {}
         for ph in range(3):
@@ -173,7 +178,8 @@ class CoreModel:
                     tgt = HI if pv else LO
                 k = bisect.bisect_right(r.valley, c) - 1
                 dt = r.dt[k] if k < len(r.dt) else dt_cur
-                changes.append((c, tgt, dt))
+                mp = r.mp[k] if k < len(r.mp) else mp_cur
+                changes.append((c, tgt, dt, mp))
             ev, self.legs[ph] = simulate_events(changes, end, (1 << fixed.DT_WIDTH) - 1, self.legs[ph])
             gate_ch[ph] = [(c, h) for c, h, _ in ev if c < end]
             gate_ch[ph + 3] = [(c, lo) for c, _, lo in ev if c < end]

@@ -4,8 +4,10 @@
 The FSM per leg (state: hi, lo, cnt = clocks the state has lasted, this clock included, saturating):
 
 * target OFF (core disabled / no valid pole): both gates off on the next clock.
-* a gate is on and the pole asks for the other side: once cnt >= dt the gate turns off (minimum on-time
-  dt); with dt == 0 the other gate turns on on the same clock edge.
+* target BRAKE (trip with "low sides on"): the high side turns off on the next clock, then the low side
+  turns on after the dead time (directly when dt == 0).
+* a gate is on and the pole asks for the other side: once cnt >= max(dt, mp) the gate turns off
+  (minimum on-time); with dt == 0 the other gate turns on on the same clock edge.
 * both gates off: once cnt >= dt the wanted gate turns on (dead time dt).
 
 Times are clock-cycle indices; a value "at cycle c" is the register value during cycle c.
@@ -14,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-OFF, LO, HI = 0, 1, 2
+OFF, LO, HI, BRAKE = 0, 1, 2, 3
 
 
 @dataclass
@@ -27,55 +29,64 @@ class LegState:
         return self.hi, self.lo
 
 
-def step_cycle(s: LegState, tgt: int, dt: int, sat: int) -> LegState:
+def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0) -> LegState:
     """One clock of the FSM (the per-clock reference; mirrors the always_comb of rtl/deadtime.sv)."""
     hi, lo = s.hi, s.lo
     held = s.cnt >= dt
+    held_on = held and s.cnt >= mp
     if tgt == OFF:
         hi, lo = 0, 0
     elif s.hi:
-        if tgt == LO and held:
+        if tgt == BRAKE or (tgt == LO and held_on):
             hi, lo = 0, int(dt == 0)
     elif s.lo:
-        if tgt == HI and held:
+        if tgt == HI and held_on:
             hi, lo = int(dt == 0), 0
     elif held:
-        hi, lo = int(tgt == HI), int(tgt == LO)
+        hi, lo = int(tgt == HI), int(tgt in (LO, BRAKE))
     cnt = 1 if (hi, lo) != (s.hi, s.lo) else min(s.cnt + 1, sat)
     return LegState(hi, lo, cnt)
 
 
-def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | None = None) -> list[tuple[int, int]]:
-    """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target and dead time."""
-    s = init or LegState(0, 0, sat)
+def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | None = None,
+                    mp: list[int] | None = None) -> list[tuple[int, int]]:
+    """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target, dead time and
+    minimum pulse (default 0)."""
+    s = init or LegState(0, 0, 0)          # reset: off, the dead time counts from the release
     out = [s.key()]
-    for t, d in zip(tgt, dt):
-        s = step_cycle(s, t, d, sat)
+    for i, (t, d) in enumerate(zip(tgt, dt)):
+        s = step_cycle(s, t, d, sat, mp[i] if mp is not None else 0)
         out.append(s.key())
     return out
 
 
-def simulate_events(changes: list[tuple[int, int, int]], end: int, sat: int,
+def simulate_events(changes: list[tuple], end: int, sat: int,
                     init: LegState | None = None, start: int = 0) -> tuple[list[tuple[int, int, int]], LegState]:
     """Event-driven FSM: exact same result as simulate_cycles, in time proportional to the edges.
 
-    ``changes``: sorted (cycle, target, dt) -- the inputs from that cycle on (the first at ``start``).
+    ``changes``: sorted (cycle, target, dt[, mp]) -- the inputs from that cycle on (the first at ``start``).
     Returns the gate changes [(cycle, hi, lo), ...] (the new value holds from that cycle) for cycles in
     (start, end], and the state at cycle ``end``.
     """
-    s = LegState(*(init.hi, init.lo, init.cnt)) if init else LegState(0, 0, sat)
+    s = LegState(*(init.hi, init.lo, init.cnt)) if init else LegState(0, 0, 0)
     out: list[tuple[int, int, int]] = []
     c = start
-    for i, (c0, tgt, dt) in enumerate(changes):
+    for i, ch in enumerate(changes):
+        c0, tgt, dt = ch[:3]
+        mp = ch[3] if len(ch) > 3 else 0
         assert c0 == c, (c0, c)
         c_next = changes[i + 1][0] if i + 1 < len(changes) else end
         while c < c_next:
             # first cycle c' >= c at which the FSM decides a change (taking effect at c' + 1)
             if tgt == OFF:
                 dec = c if (s.hi or s.lo) else None
-            elif (s.hi and tgt == HI) or (s.lo and tgt == LO):
+            elif (s.hi and tgt == HI) or (s.lo and tgt in (LO, BRAKE)):
                 dec = None
-            else:
+            elif s.hi and tgt == BRAKE:
+                dec = c
+            elif s.hi or s.lo:                         # minimum on-time, then off (or swap)
+                dec = c + max(0, max(dt, mp) - s.cnt)
+            else:                                      # dead time, then on
                 dec = c + max(0, dt - s.cnt)
             if dec is None or dec >= c_next:
                 s.cnt = min(s.cnt + (c_next - c), sat)
@@ -89,7 +100,7 @@ def simulate_events(changes: list[tuple[int, int, int]], end: int, sat: int,
             elif s.lo:
                 hi, lo = int(dt == 0), 0
             else:
-                hi, lo = int(tgt == HI), int(tgt == LO)
+                hi, lo = int(tgt == HI), int(tgt in (LO, BRAKE))
             s = LegState(hi, lo, 1)
             c = dec + 1
             out.append((c, hi, lo))

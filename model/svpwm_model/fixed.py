@@ -30,7 +30,7 @@ SIN_BITS = 16             # UQ0.16 sine samples
 M_FRAC = 15               # m is UQ1.15
 M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
-DUTY_LATENCY = 11         # clocks from the duty calculator's start strobe to its done strobe
+DUTY_LATENCY = 12         # clocks from the duty calculator's start strobe to its done strobe
 F_CLK_DEFAULT = 48e6      # default core clock (Hz)
 
 ROM_SIZE = 1 << ROM_BITS
@@ -63,14 +63,47 @@ def clamp_m(m: int) -> tuple[int, bool]:
     return (M_ONE, True) if m > M_ONE else (m, False)
 
 
-def clamp_period(p: int) -> tuple[int, bool]:
-    """Clamp a half period to [MIN_PERIOD, 2**CNT_WIDTH - 1]; returns (value, clamped)."""
+FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)
+
+
+def clamp_period(p: int, dt: int = 0, mp: int = 0) -> tuple[int, bool]:
+    """Clamp a half period to [max(MIN_PERIOD, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped).
+
+    A period too short for the dead time plus the minimum pulse is lengthened, never the dead time
+    shortened: the dead time is a safety setting."""
     top = (1 << CNT_WIDTH) - 1
-    if p < MIN_PERIOD:
-        return MIN_PERIOD, True
+    low = max(MIN_PERIOD, 2 * (dt + mp))
+    if p < low:
+        return low, True
     if p > top:
         return top, True
     return p, False
+
+
+def clamp_freq(f: int) -> tuple[int, bool]:
+    """Clamp a frequency word to [-FREQ_MAX, FREQ_MAX]; returns (value, clamped)."""
+    if f > FREQ_MAX:
+        return FREQ_MAX, True
+    if f < -FREQ_MAX:
+        return -FREQ_MAX, True
+    return f, False
+
+
+def snap_min_pulse(c: int, period: int, thr: int) -> int:
+    """Minimum-pulse rule on one compare value (rtl/svpwm_minpulse.sv), thr = dead time + minimum pulse.
+
+    A pole pulse shorter than thr would reach its gate shorter than the minimum pulse (the dead time
+    eats dt of it), so such pulses are dropped or widened to thr, whichever is nearer:
+    the low pulse around the valley is built from the C of the two periods it straddles, so each C is
+    0 or >= thr; the high pulse around the peak is 2 (P - C) clocks, so P - C is 0 or >= ceil(thr/2).
+    The map is monotonic, so the order of the three phases (the Table I sequence) is kept.
+    Requires period >= 2 * thr (clamp_period guarantees it)."""
+    hthr = (thr + 1) >> 1
+    if c < thr:
+        return 0 if 2 * c < thr else thr
+    if period - c < hthr:
+        return period if 2 * (period - c) < hthr else period - hthr
+    return c
 
 
 def sines(a16: int) -> tuple[int, int]:

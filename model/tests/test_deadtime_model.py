@@ -34,7 +34,7 @@ def to_changes(tgt, dt, start=0):
 
 
 def cycles_state(tgt, dt, sat, init=None):
-    s = LegState(init.hi, init.lo, init.cnt) if init else LegState(0, 0, sat)
+    s = LegState(init.hi, init.lo, init.cnt) if init else LegState(0, 0, 0)     # the reset state
     for t, d in zip(tgt, dt):
         s = step_cycle(s, t, d, sat)
     return s
@@ -97,6 +97,9 @@ def test_events_split_runs():
         assert ev1 + ev2 == ev and (s2.hi, s2.lo, s2.cnt) == (s.hi, s.lo, s.cnt)
 
 
+IDLE = LegState(0, 0, SAT10)      # off for a long time (the dead-time counter saturated)
+
+
 def lo_then_pulse(dt, w, tail):
     lead = dt + 3
     tgt = [LO] * lead + [HI] * w + [LO] * tail
@@ -108,13 +111,13 @@ def test_short_pulse_vanishes(dt):
     """A pole pulse of width <= dt vanishes: the low gate is off for exactly dt clocks and returns."""
     for w in sorted({w for w in (1, 2, dt // 2, dt - 1, dt) if 1 <= w <= dt}):
         lead, tgt, dts = lo_then_pulse(dt, w, 2 * dt + 4)
-        out = simulate_cycles(tgt, dts, SAT10)
+        out = simulate_cycles(tgt, dts, SAT10, IDLE)
         assert out[lead] == (0, 1)
         assert all(h == 0 for h, _ in out), f"dt={dt} w={w}: a high-side pulse"
         notch = [c for c, g in enumerate(out) if c > lead and g == (0, 0)]
         assert notch == list(range(lead + 1, lead + dt + 1)), (dt, w, notch[:3], len(notch))
-        ev, _ = simulate_events(to_changes(tgt, dts), len(tgt), SAT10)
-        assert ev == [(1, 0, 1), (lead + 1, 0, 0), (lead + dt + 1, 0, 1)]      # (1, 0, 1): lo on after reset
+        ev, _ = simulate_events(to_changes(tgt, dts), len(tgt), SAT10, IDLE)
+        assert ev == [(1, 0, 1), (lead + 1, 0, 0), (lead + dt + 1, 0, 1)]      # (1, 0, 1): lo on at once
 
 
 @pytest.mark.parametrize("dt", [1, 2, 7, 48, SAT10])
@@ -122,10 +125,10 @@ def test_pulse_dt_plus_one_stretched(dt):
     """A pole pulse of dt + 1 clocks becomes a high-side pulse of exactly dt clocks (minimum on-time),
     framed by dead times of dt."""
     lead, tgt, dts = lo_then_pulse(dt, dt + 1, 3 * dt + 4)
-    out = simulate_cycles(tgt, dts, SAT10)
+    out = simulate_cycles(tgt, dts, SAT10, IDLE)
     hi = [c for c, (h, _) in enumerate(out) if h]
     assert hi == list(range(lead + dt + 1, lead + 2 * dt + 1))
-    ev, _ = simulate_events(to_changes(tgt, dts), len(tgt), SAT10)
+    ev, _ = simulate_events(to_changes(tgt, dts), len(tgt), SAT10, IDLE)
     assert ev == [(1, 0, 1), (lead + 1, 0, 0), (lead + dt + 1, 1, 0), (lead + 2 * dt + 1, 0, 0),
                   (lead + 3 * dt + 1, 0, 1)]
 
@@ -153,3 +156,13 @@ def test_off_turns_gates_off_next_clock():
         tgt = [HI] * on + [OFF] * 3
         out = simulate_cycles(tgt, [0] * 2 + [dt] * (len(tgt) - 2), SAT10)
         assert out[on] == (1, 0) and out[on + 1] == (0, 0)
+
+
+@pytest.mark.parametrize("dt", [1, 7, 48])
+def test_reset_counts_as_turn_off(dt):
+    """After reset the dead time runs from the release: the first turn-on comes dt clocks later."""
+    tgt = [LO] * (2 * dt + 4)
+    out = simulate_cycles(tgt, [dt] * len(tgt), SAT10)
+    assert [c for c, g in enumerate(out) if g == (0, 1)][0] == dt + 1
+    ev, _ = simulate_events(to_changes(tgt, [dt] * len(tgt)), len(tgt), SAT10)
+    assert ev == [(dt + 1, 0, 1)]

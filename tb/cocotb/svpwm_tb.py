@@ -51,17 +51,28 @@ class CoreTB:
         d.m_i.value = u.m
         d.period_i.value = u.period
         d.dt_i.value = u.dt
+        d.mp_i.value = u.mp
+
+    def set_safety(self, fault=0, fault_clear=0, cbc=0, safe_lo=0, pol=0, lock=0) -> None:
+        d = self.dut
+        d.fault_i.value = fault
+        d.fault_clear_i.value = fault_clear
+        d.trip_cbc_i.value = cbc
+        d.safe_lo_i.value = safe_lo
+        d.pol_i.value = pol
+        d.lock_i.value = lock
 
     async def reset(self, idle: Inputs = Inputs()) -> None:
         d = self.dut
         d.en_i.value = 0
         self.set_inputs(idle)
+        self.set_safety()
         d.rst_ni.value = 0
         await ClockCycles(d.clk, 3)
         d.rst_ni.value = 1
         await ClockCycles(d.clk, 2)
         self.model = CoreModel()
-        self.idle_cycles = 2          # clocks since reset release, with en_i low, before run()
+        self.idle_cycles = 3          # clocks from reset release to cycle 0 of run() (en_i low)
 
     def _cycle(self) -> int:
         return int(round(get_sim_time("ns") - self.t0)) // CLK_NS
@@ -137,6 +148,8 @@ class CoreTB:
         d = self.dut
         assert int(d.shoot_through_count.value) == 0, "in-RTL checker: both gates of a leg on"
         assert int(d.dead_time_violations.value) == 0, "in-RTL checker: dead time violated"
+        assert int(d.short_pulse_count.value) == 0, "in-RTL checker: gate pulse shorter than max(dt, mp)"
+        assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
 
 
 def _squash(ev: list[tuple[int, int]], initial: int = 0) -> list[tuple[int, int]]:

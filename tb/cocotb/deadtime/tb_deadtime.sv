@@ -9,8 +9,10 @@ module tb_deadtime #(
 ) (
   input  logic               rst_ni,
   input  logic               en_i,
+  input  logic               brake_i,
   input  logic               pole_i,
   input  logic [DtWidth-1:0] dt_i,
+  input  logic [DtWidth-1:0] mp_i,
   output logic               clk,
   output logic               hi_o,
   output logic               lo_o
@@ -22,9 +24,11 @@ module tb_deadtime #(
   deadtime #(.DtWidth(DtWidth)) u_dut (
     .clk_i  (clk),
     .rst_ni (rst_ni),
-    .en_i   (en_i),
-    .pole_i (pole_i),
-    .dt_i   (dt_i),
+    .en_i    (en_i),
+    .brake_i (brake_i),
+    .pole_i  (pole_i),
+    .dt_i    (dt_i),
+    .mp_i    (mp_i),
     .hi_o   (hi_o),
     .lo_o   (lo_o)
   );

@@ -16,10 +16,10 @@ from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge
+from cocotb.triggers import ClockCycles, FallingEdge
 
 from simrun import REPO, run_sim
-from svpwm_model.deadtime import HI, LO, OFF, simulate_cycles
+from svpwm_model.deadtime import BRAKE, HI, LO, OFF, LegState, simulate_cycles
 
 
 class DtTB:
@@ -30,27 +30,37 @@ class DtTB:
         self.icarus = cocotb.SIM_NAME.lower().startswith("icarus")
 
     async def run(self, sched, what=""):
-        """sched: per clock (en, pole, dt). Resets, drives, compares (hi, lo) every clock with the model,
-        checks the direct properties; returns the RTL trace (hi, lo) at clocks 0..len(sched)."""
+        """sched: per clock (en, pole, dt[, brake, mp]). Resets, drives, compares (hi, lo) every clock with
+        the model, checks the direct properties; returns the RTL trace (hi, lo) at clocks 0..len(sched)."""
         d = self.dut
+        sched = [tuple(x) + (0, 0)[len(x) - 3:] for x in sched]
         d.en_i.value = 0
+        d.brake_i.value = 0
         d.pole_i.value = 0
         d.dt_i.value = 0
+        d.mp_i.value = 0
         d.rst_ni.value = 0
         await FallingEdge(d.clk)
         await FallingEdge(d.clk)
         d.rst_ni.value = 1
-        tgt = [OFF if not en else (HI if pole else LO) for en, pole, _ in sched]
-        exp = simulate_cycles(tgt, [dt for _, _, dt in sched], self.max)
+        # idle (en_i low) until the dead-time counter has saturated: the schedule starts "off for long"
+        # (test_reset_turn_off checks the reset state itself)
+        await ClockCycles(d.clk, self.max + 1)
+        await FallingEdge(d.clk)
+        tgt = [OFF if not en else BRAKE if brake else (HI if pole else LO) for en, pole, _, brake, _ in sched]
+        exp = simulate_cycles(tgt, [x[2] for x in sched], self.max, LegState(0, 0, self.max),
+                              mp=[x[4] for x in sched])
         trace = []
-        for k, (en, pole, dt) in enumerate(sched):
+        for k, (en, pole, dt, brake, mp) in enumerate(sched):
             got = (int(d.hi_o.value), int(d.lo_o.value))
             assert got == exp[k], (f"{what} clock {k}: RTL (hi, lo) = {got}, model {exp[k]}; inputs (en, pole, dt) "
                                    f"from clock {max(0, k - 4)}: {sched[max(0, k - 4):k + 1]}")
             trace.append(got)
             d.en_i.value = en
+            d.brake_i.value = brake
             d.pole_i.value = pole
             d.dt_i.value = dt
+            d.mp_i.value = mp
             await FallingEdge(d.clk)
         got = (int(d.hi_o.value), int(d.lo_o.value))
         assert got == exp[-1], f"{what} last clock: RTL {got}, model {exp[-1]}"
@@ -63,9 +73,10 @@ def check_properties(trace, sched, what=""):
     """Safety directly on the trace (no model): see the module docstring."""
     off_run = 1 << 30                      # clocks both gates have been off (reset: long ago)
     on_since = [None, None]
+    sched = [tuple(x) + (0, 0)[len(x) - 3:] for x in sched]
     for c in range(1, len(trace)):
         prev, cur = trace[c - 1], trace[c]
-        en, _, dt = sched[c - 1]            # inputs of the deciding clock c - 1
+        en, _, dt, brake, mp = sched[c - 1]   # inputs of the deciding clock c - 1
         assert cur != (1, 1), f"{what}: both gates on at clock {c}"
         for g in (0, 1):
             if cur[g] and not prev[g]:                                  # turn-on
@@ -75,8 +86,9 @@ def check_properties(trace, sched, what=""):
                     assert off_run >= dt, f"{what}: gap {off_run} < dt {dt} before the turn-on at {c}"
                 on_since[g] = c
             if prev[g] and not cur[g]:                                  # turn-off
-                if en and on_since[g] is not None:
-                    assert c - on_since[g] >= dt, f"{what}: on-pulse {c - on_since[g]} < dt {dt} ending at {c}"
+                if en and not (brake and g == 0) and on_since[g] is not None:
+                    assert c - on_since[g] >= max(dt, mp), \
+                        f"{what}: on-pulse {c - on_since[g]} < max(dt {dt}, mp {mp}) ending at {c}"
         off_run = off_run + 1 if cur == (0, 0) and prev == (0, 0) else (1 if cur == (0, 0) else 0)
 
 
@@ -100,6 +112,60 @@ def random_sched(rng: random.Random, dt_of, n_seg: int, max_len: int):
         else:
             sched += [(1, pole, dt)] * n
     return sched
+
+
+@cocotb.test()
+async def reset_turn_off(dut):
+    """A reset in mid-pulse is a turn-off: after its release the other gate waits the full dead time."""
+    tb = DtTB(dut)
+    d = dut
+    for dt in (3, min(40, tb.max)):
+        d.dt_i.value = dt
+        d.mp_i.value = 0
+        d.brake_i.value = 0
+        d.en_i.value = 1
+        d.pole_i.value = 1
+        d.rst_ni.value = 0
+        await FallingEdge(d.clk)
+        await FallingEdge(d.clk)                    # a rising edge with the reset low
+        d.rst_ni.value = 1
+        await ClockCycles(d.clk, 2 * dt + 3)
+        await FallingEdge(d.clk)
+        assert str(d.hi_o.value) == "1", (f"dt={dt}: hi {d.hi_o.value} lo {d.lo_o.value} en {d.en_i.value} "
+                                          f"brake {d.brake_i.value} pole {d.pole_i.value} dt {d.dt_i.value} "
+                                          f"mp {d.mp_i.value} rst {d.rst_ni.value} cnt {d.u_dut.cnt_q.value}")
+        d.rst_ni.value = 0                          # reset while the high side is on
+        await FallingEdge(d.clk)
+        assert (int(d.hi_o.value), int(d.lo_o.value)) == (0, 0)
+        d.pole_i.value = 0
+        d.rst_ni.value = 1
+        sched = [(1, 0, dt)] * (dt + 4)
+        exp = simulate_cycles([LO] * len(sched), [dt] * len(sched), tb.max)
+        for k in range(len(sched)):
+            got = (int(d.hi_o.value), int(d.lo_o.value))
+            assert got == exp[k], f"dt={dt} clock {k} after reset: RTL {got}, model {exp[k]}"
+            await FallingEdge(d.clk)
+        first_on = exp.index((0, 1))
+        assert first_on == dt + 1, first_on
+
+
+@cocotb.test()
+async def brake_and_min_pulse(dut):
+    """Braking (trip safe state "low sides on") arrives at random moments: the high side goes off on the
+    next clock, the low side follows after the dead time; minimum on-pulses longer than the dead time."""
+    tb = DtTB(dut)
+    rng = random.Random(0xB4A4E + tb.W)
+    for dt, mp in ((0, 0), (0, 5), (3, 0), (3, 9), (min(7, tb.max), min(2, tb.max)), (tb.max, tb.max)):
+        base = random_sched(rng, lambda i: dt, 40 if tb.icarus else 100, 4 * max(dt, mp) + 8)
+        sched = []
+        for en, pole, d_ in base:
+            brake = 1 if rng.random() < 0.03 else 0
+            sched.append((en, pole, d_, brake, mp))
+        # stretch braking requests into runs
+        for i in range(1, len(sched)):
+            if sched[i - 1][3] and rng.random() < 0.9:
+                sched[i] = sched[i][:3] + (1, mp)
+        await tb.run(sched, f"dt={dt} mp={mp}")
 
 
 @cocotb.test()

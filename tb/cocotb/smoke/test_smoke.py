@@ -1,18 +1,15 @@
 """Smoke test of the simulation infrastructure (cocotb 2.x + Verilator/Icarus).
 
 pytest part: `test_smoke[sim]` builds tb_smoke.sv and runs the cocotb tests
-below.  `test_sim_speed[sim]` (marker `slow`, only with SVPWM_SMOKE_SPEED=1)
-measures simulated clock cycles per second with the SV-generated clock.
+below.  Simulation throughput is measured by `make bench` (scripts/bench.py).
 
 cocotb tests are named without a `test_` prefix so pytest does not collect them.
 """
 
 import os
-import time
 from pathlib import Path
 
 import cocotb
-import pytest
 from cocotb.triggers import ReadOnly, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 
@@ -66,26 +63,6 @@ async def counter_reset_midway(dut):
     assert 9 <= int(dut.count.value) <= 10
 
 
-@cocotb.test()
-async def sim_speed(dut):
-    """Run SMOKE_SPEED_CYCLES clock cycles waiting on `tick` edges; log cycles/s."""
-    cycles = int(os.environ["SMOKE_SPEED_CYCLES"])
-    period = 1 << int(os.environ["SMOKE_TICK_LOG2"])
-    await _reset(dut)
-    t0 = time.perf_counter()
-    for _ in range(cycles // period):
-        await RisingEdge(dut.tick)
-    dt = time.perf_counter() - t0
-    await ReadOnly()
-    n = int(dut.count.value)
-    assert n == (cycles // period) * period - 1
-    rate = n / dt
-    dut._log.info("SIM SPEED: %d cycles in %.2f s = %.0f cycles/s", n, dt, rate)
-    out = os.environ.get("SMOKE_SPEED_OUT")
-    if out:
-        Path(out).write_text(f"{n} {dt:.3f} {rate:.0f}\n")
-
-
 # --------------------------------------------------------------------------- pytest
 def _run(sim, build_name, testcase, params, extra_env=None):
     from simrun import run_sim
@@ -107,14 +84,3 @@ def _run(sim, build_name, testcase, params, extra_env=None):
 
 def test_smoke(sim):
     _run(sim, "tick4", ["counter_edges", "counter_reset_midway"], {"TICK_LOG2": 4})
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(os.environ.get("SVPWM_SMOKE_SPEED") != "1", reason="set SVPWM_SMOKE_SPEED=1")
-def test_sim_speed(sim, tmp_path):
-    cycles = int(os.environ.get("SMOKE_SPEED_CYCLES", 2_000_000 if sim == "verilator" else 200_000))
-    out = tmp_path / "speed.txt"
-    _run(sim, "speed", "sim_speed", {"TICK_LOG2": 16},
-         {"SMOKE_SPEED_CYCLES": str(cycles), "SMOKE_SPEED_OUT": str(out)})
-    n, dt, rate = out.read_text().split()
-    print(f"\n[{sim}] {n} cycles in {dt} s -> {int(rate):,} cycles/s")

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // tb_svpwm_core: simulation harness around svpwm_core. Generates the clock (10 ns) in SystemVerilog
 // (3x faster than a Python clock on Verilator), bundles the outputs cocotb watches by edges into one
-// word, and checks on every clock that no leg has both gates on and that no gate turns on before
-// the dead time in force has passed since the other gate of its leg turned off.
+// word, and checks the gate pins on every clock: never both gates of a leg on, dead time before every
+// turn-on, no on-pulse shorter than max(dead time, minimum pulse) unless cut by a disable/trip/reset,
+// all gates off during reset and while disabled.
 `timescale 1ns / 1ps
 `default_nettype none
 
@@ -11,7 +12,8 @@ module tb_svpwm_core #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 32
+  parameter int MinPeriod  = 32,
+  parameter logic [1:0] GatePol = 2'b00
 ) (
   input  logic                        rst_ni,
   input  logic                        en_i,
@@ -19,6 +21,13 @@ module tb_svpwm_core #(
   input  logic [15:0]                 m_i,
   input  logic [CntWidth-1:0]         period_i,
   input  logic [DtWidth-1:0]          dt_i,
+  input  logic [DtWidth-1:0]          mp_i,
+  input  logic                        fault_i,
+  input  logic                        fault_clear_i,
+  input  logic                        trip_cbc_i,
+  input  logic                        safe_lo_i,
+  input  logic [1:0]                  pol_i,
+  input  logic                        lock_i,
   output logic                        clk,
   output logic [8:0]                  mon,          // {pole[2:0], gate_lo[2:0], gate_hi[2:0]}
   output logic [2:0]                  gate_hi_o,
@@ -34,8 +43,16 @@ module tb_svpwm_core #(
   output logic                        running_o,
   output logic                        m_clamp_o,
   output logic                        period_clamp_o,
-  output logic [31:0]                 shoot_through_count,   // clocks with both gates of a leg on
-  output logic [31:0]                 dead_time_violations   // turn-ons earlier than the dead time
+  output logic                        freq_clamp_o,
+  output logic                        fault_o,
+  output logic                        tripped_o,
+  output logic                        locked_o,
+  output logic [31:0]                 shoot_through_count,   // see the checker below
+  output logic [31:0]                 dead_time_violations,
+  output logic [31:0]                 short_pulse_count,
+  output logic [31:0]                 off_violations,
+  output logic [31:0]                 trip_violations_o,
+  output logic [31:0]                 lock_violations_o
 );
 
   initial clk = 1'b0;
@@ -46,7 +63,8 @@ module tb_svpwm_core #(
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),
     .DtWidth    (DtWidth),
-    .MinPeriod  (MinPeriod)
+    .MinPeriod  (MinPeriod),
+    .GatePol    (GatePol)
   ) u_core (
     .clk_i          (clk),
     .rst_ni         (rst_ni),
@@ -55,8 +73,15 @@ module tb_svpwm_core #(
     .m_i            (m_i),
     .period_i       (period_i),
     .dt_i           (dt_i),
-    .gate_hi_o      (gate_hi_o),
-    .gate_lo_o      (gate_lo_o),
+    .mp_i           (mp_i),
+    .fault_i        (fault_i),
+    .fault_clear_i  (fault_clear_i),
+    .trip_cbc_i     (trip_cbc_i),
+    .safe_lo_i      (safe_lo_i),
+    .pol_i          (pol_i),
+    .lock_i         (lock_i),
+    .gate_hi_o      (gate_hi_pin),
+    .gate_lo_o      (gate_lo_pin),
     .pole_o         (pole_o),
     .carrier_o      (carrier_o),
     .carrier_up_o   (carrier_up_o),
@@ -67,48 +92,123 @@ module tb_svpwm_core #(
     .period_o       (period_o),
     .running_o      (running_o),
     .m_clamp_o      (m_clamp_o),
-    .period_clamp_o (period_clamp_o)
+    .period_clamp_o (period_clamp_o),
+    .freq_clamp_o   (freq_clamp_o),
+    .fault_o        (fault_o),
+    .tripped_o      (tripped_o),
+    .locked_o       (locked_o)
   );
 
-  assign mon = {pole_o, gate_lo_o, gate_hi_o};
+  // pins -> gate on/off (undo the polarity in force, so the checks below speak of switches)
+  logic [2:0] gate_hi_pin, gate_lo_pin;
+  assign gate_hi_o = u_core.pol_q[0] ? ~gate_hi_pin : gate_hi_pin;
+  assign gate_lo_o = u_core.pol_q[1] ? ~gate_lo_pin : gate_lo_pin;
 
-  // ---- independent per-clock safety checker (does not use the core's internals but dt_i history) --
-  // The dead time in force changes at valleys; the checker keeps the value the core took at each
-  // load point from its own copy of the input timeline: dt sampled at the peak, active at the valley.
-  logic [DtWidth-1:0] dt_next, dt_act, dt_dec;   // dt_dec: in force during the previous clock
-  logic [2:0]         hi_prev, lo_prev;
-  int unsigned        off_cnt [3];          // clocks both gates of the leg have been off
+  assign mon = {pole_o, gate_lo_o, gate_hi_o};
+  assign trip_violations_o = trip_violations;
+  assign lock_violations_o = lock_violations;
+
+  // ---- per-clock safety checker on the pins (polarity undone) ------------------------------------
+  // Uses the dead time and minimum pulse the core has in force (u_core.dt_q / mp_q, themselves checked
+  // against the model by the bit-exact tests) and the configuration registers for the lock check.
+  //   shoot_through_count:  clocks with both gates of a leg on
+  //   dead_time_violations: a gate turned on less than dt after the other gate of its leg turned off
+  //   short_pulse_count:    an on-pulse shorter than max(dt, mp), not started or cut by a forced state
+  //                         (reset, en_i low, trip)
+  //   off_violations:       a gate on during reset; a gate on while disabled and not tripped
+  //   trip_violations:      fault_i high (or the trip latched) and a high side on, or a low side on
+  //                         while the safe state is "all off"
+  //   lock_violations:      a locked configuration register changed
+  logic [DtWidth-1:0] dt_dec, mp_dec;       // in force during the previous clock (the deciding clock)
+  logic [2:0]         hi_prev, lo_prev, tainted;
+  logic               en_prev, trip_prev, forced_prev;
+  longint unsigned    cyc, last_off [6];    // clock counter; last turn-off of each gate (hi 0..2, lo 3..5)
+  int unsigned        on_cnt [6];           // clocks each gate has been on
+  logic               forced;
+  logic [DtWidth-1:0] lk_dt, lk_mp;
+  logic [1:0]         lk_pol;
+  logic               lk_safe, lk_cbc, lk_valid;
+  logic [31:0]        trip_violations, lock_violations;
+
+  assign forced = !rst_ni || !en_i || tripped_o;
 
   initial begin
     shoot_through_count  = 0;
     dead_time_violations = 0;
-    for (int i = 0; i < 3; i++) off_cnt[i] = 1 << 20;
-  end
-
-  always @(posedge clk) begin
-    if (!en_i) begin
-      dt_next <= dt_i;
-      dt_act  <= dt_i;
-    end else begin
-      if (peak_o) dt_next <= dt_i;
-      if (!carrier_up_o && carrier_o == CntWidth'(1)) dt_act <= dt_next;
+    short_pulse_count    = 0;
+    off_violations       = 0;
+    trip_violations      = 0;
+    lock_violations      = 0;
+    hi_prev              = '0;
+    lo_prev              = '0;
+    tainted              = '1;
+    en_prev              = 1'b0;
+    trip_prev            = 1'b0;
+    forced_prev          = 1'b1;
+    lk_valid             = 1'b0;
+    cyc                  = 64'd1 << 40;
+    for (int i = 0; i < 6; i++) begin
+      last_off[i] = 0;
+      on_cnt[i]   = 0;
     end
   end
 
   always @(posedge clk) begin
-    dt_dec  <= dt_act;
+    cyc     <= cyc + 1;
+    dt_dec  <= u_core.dt_q;
+    mp_dec  <= u_core.mp_q;
     hi_prev <= gate_hi_o;
     lo_prev <= gate_lo_o;
+    en_prev <= en_i;
+    if (!rst_ni && (gate_hi_o != '0 || gate_lo_o != '0)) off_violations <= off_violations + 1;
+    trip_prev   <= u_core.trip_sync;
+    forced_prev <= forced;
+    if (rst_ni && !en_i && !en_prev && !tripped_o && !u_core.trip_sync && !trip_prev
+        && (gate_hi_o != '0 || gate_lo_o != '0))
+      off_violations <= off_violations + 1;
+    if ((fault_i || u_core.u_gate_out.latch_q) && gate_hi_o != '0) trip_violations <= trip_violations + 1;
+    if ((fault_i || u_core.u_gate_out.latch_q) && !u_core.safe_lo_q && gate_lo_o != '0)
+      trip_violations <= trip_violations + 1;
+    // lock: capture at the first locked clock, then nothing may change until reset
+    if (!rst_ni) lk_valid <= 1'b0;
+    else if (u_core.locked_q && !lk_valid) begin
+      lk_valid <= 1'b1;
+      lk_dt    <= u_core.dt_cfg_q;
+      lk_mp    <= u_core.mp_cfg_q;
+      lk_pol   <= u_core.pol_q;
+      lk_safe  <= u_core.safe_lo_q;
+      lk_cbc   <= u_core.cbc_q;
+    end else if (lk_valid && (lk_dt != u_core.dt_cfg_q || lk_mp != u_core.mp_cfg_q || lk_pol != u_core.pol_q
+                              || lk_safe != u_core.safe_lo_q || lk_cbc != u_core.cbc_q))
+      lock_violations <= lock_violations + 1;
     for (int i = 0; i < 3; i++) begin
       if (gate_hi_o[i] && gate_lo_o[i]) shoot_through_count <= shoot_through_count + 1;
-      if ((gate_hi_o[i] && !hi_prev[i] && !lo_prev[i]) || (gate_lo_o[i] && !lo_prev[i] && !hi_prev[i])) begin
-        if (dt_dec != '0 && off_cnt[i] < 32'(dt_dec)) dead_time_violations <= dead_time_violations + 1;
+      // turn-on of the high side: the low side turned off at least dt clocks ago (dt in force when
+      // deciding); a direct swap (other gate on the clock before) needs dt = 0
+      if (gate_hi_o[i] && !hi_prev[i] && dt_dec != '0 && (lo_prev[i] || cyc - last_off[i+3] < 64'(dt_dec))) begin
+        dead_time_violations <= dead_time_violations + 1;
+        $display("%t tb_svpwm_core: leg %0d high side on %0d clocks after the low side off, dt %0d",
+                 $time, i, cyc - last_off[i+3], dt_dec);
       end
-      if ((gate_hi_o[i] && lo_prev[i]) || (gate_lo_o[i] && hi_prev[i])) begin
-        if (dt_dec != '0) dead_time_violations <= dead_time_violations + 1;   // direct swap needs dt = 0
+      if (gate_lo_o[i] && !lo_prev[i] && dt_dec != '0 && (hi_prev[i] || cyc - last_off[i] < 64'(dt_dec))) begin
+        dead_time_violations <= dead_time_violations + 1;
+        $display("%t tb_svpwm_core: leg %0d low side on %0d clocks after the high side off, dt %0d",
+                 $time, i, cyc - last_off[i], dt_dec);
       end
-      if (!gate_hi_o[i] && !gate_lo_o[i]) off_cnt[i] <= off_cnt[i] + 1;
-      else                                off_cnt[i] <= 0;
+      if (hi_prev[i] && !gate_hi_o[i]) last_off[i]   <= cyc;
+      if (lo_prev[i] && !gate_lo_o[i]) last_off[i+3] <= cyc;
+      // on-pulse length: a pulse is exempt if a forced state started it, cut it or happened in it
+      if (((hi_prev[i] && !gate_hi_o[i] && on_cnt[i] < 32'(dt_dec))
+           || (hi_prev[i] && !gate_hi_o[i] && on_cnt[i] < 32'(mp_dec))
+           || (lo_prev[i] && !gate_lo_o[i] && on_cnt[i+3] < 32'(dt_dec))
+           || (lo_prev[i] && !gate_lo_o[i] && on_cnt[i+3] < 32'(mp_dec)))
+          && !forced && !tainted[i])
+        short_pulse_count <= short_pulse_count + 1;
+      on_cnt[i]   <= (gate_hi_o[i] && hi_prev[i]) ? on_cnt[i] + 1 : 1;
+      on_cnt[i+3] <= (gate_lo_o[i] && lo_prev[i]) ? on_cnt[i+3] + 1 : 1;
+      if (forced) tainted[i] <= 1'b1;
+      else if (!forced_prev && ((gate_hi_o[i] && !hi_prev[i]) || (gate_lo_o[i] && !lo_prev[i])))
+        tainted[i] <= 1'b0;                // a clean turn-on starts an unforced pulse
     end
   end
 

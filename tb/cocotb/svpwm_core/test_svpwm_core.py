@@ -40,12 +40,20 @@ def const(u: Inputs):
 
 
 def ideal_errors(exp) -> float:
-    """Worst |C - C_ideal| over the run, ideal at the exact sampled angle (full accumulator)."""
+    """Worst |C - C_ideal| of the duty calculator over the run, ideal at the exact sampled angle (full
+    accumulator). The compare values the core applies are these after the minimum-pulse rule; assert
+    that rule's deviation stays within its bound (ceil((dt + mp) / 2) counts, by design)."""
     worst = 0.0
     for n in range(1, len(exp.cmp)):
+        sector = exp.theta[n] >> fixed.PHASE_WIDTH
+        a16 = (exp.theta[n] >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)) & 0xFFFF
+        raw = fixed.compare_values(sector, a16, exp.m[n], exp.period[n])
+        thr = exp.dt[n] + exp.mp[n]
+        assert exp.cmp[n] == tuple(fixed.snap_min_pulse(c, exp.period[n], thr) for c in raw)
+        assert all(abs(a - b) <= (thr + 1) // 2 for a, b in zip(exp.cmp[n], raw))
         theta = exp.theta[n] / (1 << fixed.PHASE_WIDTH) * math.pi / 3
         ideal = ideal_compare(np.array(theta), exp.m[n] / fixed.M_ONE, exp.period[n])
-        worst = max(worst, float(np.max(np.abs(np.asarray(exp.cmp[n]) - ideal))))
+        worst = max(worst, float(np.max(np.abs(np.asarray(raw) - ideal))))
     return worst
 
 

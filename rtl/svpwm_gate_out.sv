@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: Apache-2.0
+// svpwm_gate_out: the last stage between the dead-time registers and the pins: trip (fault) forcing,
+// shoot-through interlock and gate polarity. Everything here is combinational after registers, so
+// a fault forces the gates off in the same cycle, and even with the clock stopped (like TI ePWM trip
+// zones / STM32 TIM1 break); the trip latch and the fault synchroniser are the only state.
+//   * fault_i (asynchronous, active high) turns the high sides off at once, combinationally, and the
+//     low sides too unless the safe state is "low sides on" (safe_lo_i): the low sides are then turned
+//     on by the dead-time FSMs (trip_sync_o -> brake), after the dead time -- an asynchronous force
+//     could only turn a low side on without dead time, so it never turns anything on.
+//   * latched mode (cbc_i = 0): a fault latches (after the 2-flop synchroniser); the gates stay safe
+//     until fault_i has returned low AND fault_clear_i is pulsed.
+//   * cycle-by-cycle mode (cbc_i = 1): the latch releases by itself at the next carrier valley
+//     (valley_i) at which the synchronised fault input is low.
+//   * safe state: safe_lo_i = 0 all six gates off (default); 1 low sides on (active braking).
+//   * interlock: a leg whose two gate requests are both on gets both gates off, whatever happens
+//     upstream (it cannot happen with rtl/deadtime.sv; this stage does not rely on that).
+//   * polarity: pol_i[0] = 1 makes the high-side pins active low, pol_i[1] the low-side pins; "off"
+//     is the right level at the pins in every state, reset included (pol_i are straps/static config).
+// Latency: 0 clocks from fault_i to the pins (off); 2 clocks to fault_o / trip_sync_o.
+`default_nettype none
+
+module svpwm_gate_out (
+  input  logic       clk_i,          // core clock
+  input  logic       rst_ni,         // asynchronous reset, active low (latch cleared)
+  input  logic [2:0] hi_i,           // {c, b, a} high-side requests from the dead-time registers
+  input  logic [2:0] lo_i,           // {c, b, a} low-side requests
+  input  logic       fault_i,        // trip input, asynchronous, active high
+  input  logic       fault_clear_i,  // latched mode: clears the latch once fault_i is low (pulse)
+  input  logic       cbc_i,          // 1: cycle-by-cycle (auto release at a valley), 0: latched
+  input  logic       valley_i,       // carrier valley strobe (cycle-by-cycle release point)
+  input  logic       safe_lo_i,      // safe state: 0 all off, 1 low sides on
+  input  logic [1:0] pol_i,          // {low side, high side}: 1 = active-low pins
+  output logic [2:0] gate_hi_o,      // high-side pins
+  output logic [2:0] gate_lo_o,      // low-side pins
+  output logic       fault_o,        // synchronised fault input level (status)
+  output logic       trip_sync_o,    // synchronous trip state for the dead-time FSMs (sync'd input or latch)
+  output logic       tripped_o       // the safe state is forced (latch set or fault_i high)
+);
+
+  logic [1:0] sync_q;                // fault_i synchroniser
+  logic       latch_d, latch_q;
+  logic       safe, off_lo;
+  logic [2:0] hi_ok, lo_ok, hi_on, lo_on;
+
+  always_comb begin
+    latch_d = latch_q;
+    if (sync_q[1]) begin
+      latch_d = 1'b1;
+    end else if (latch_q && (cbc_i ? valley_i : fault_clear_i)) begin
+      latch_d = 1'b0;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      sync_q  <= '0;
+      latch_q <= 1'b0;
+    end else begin
+      sync_q  <= {sync_q[0], fault_i};
+      latch_q <= latch_d;
+    end
+  end
+
+  assign safe   = fault_i || latch_q;
+  assign off_lo = safe && !safe_lo_i;
+  assign hi_ok  = hi_i & ~lo_i;      // interlock: both requested -> both off
+  assign lo_ok  = lo_i & ~hi_i;
+  assign hi_on  = safe   ? 3'b000 : hi_ok;
+  assign lo_on  = off_lo ? 3'b000 : lo_ok;
+
+  assign gate_hi_o = pol_i[0] ? ~hi_on : hi_on;
+  assign gate_lo_o = pol_i[1] ? ~lo_on : lo_on;
+  assign fault_o     = sync_q[1];
+  assign trip_sync_o = sync_q[1] || latch_q;
+  assign tripped_o   = safe;
+
+`ifdef FORMAL
+  logic f_past_valid = 1'b0;
+  always_ff @(posedge clk_i) f_past_valid <= 1'b1;
+  always_comb if (!f_past_valid) assume (!rst_ni);
+  // a leg never has both gates on, whatever the inputs
+  always_comb assert (!(hi_on & lo_on));
+  // fault asserted => high sides off in the same cycle, and low sides off unless braking
+  always_comb if (fault_i) assert (hi_on == 3'b000);
+  always_comb if (fault_i && !safe_lo_i) assert (lo_on == 3'b000);
+  // once latched, safe until cleared: the latch only falls on a clear (latched) or valley (cbc)
+  // with the synchronised input low
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(latch_q) && !latch_q)
+    assert (!$past(sync_q[1]) && ($past(cbc_i) ? $past(valley_i) : $past(fault_clear_i)));
+  always_comb if (latch_q) assert (hi_on == 3'b000 && (safe_lo_i || lo_on == 3'b000));
+  always_comb cover (latch_q && !fault_i && !cbc_i);
+  always_ff @(posedge clk_i) cover (f_past_valid && $past(latch_q) && !latch_q && $past(fault_i, 3));
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: Apache-2.0
+// svpwm_bench_top: out-of-context wrapper for the synthesis benchmark (scripts/synth_bench.py).
+// The core's input bits come from a shift register (sdi_i shifted in while shift_i is high) so
+// that they are driven by flip-flops like in a real system without 67 pins; the gates and the status
+// outputs go to pins. The core's debug outputs (carrier, compare values, period) are left open, as
+// in a board design. Overhead over the core alone: the flip-flops of the shift register, one
+// logic cell each -- synth_bench.py subtracts them (wrapper_lc) to give the core's own count.
+`default_nettype none
+
+module svpwm_bench_top #(
+  parameter int CntWidth   = 16,
+  parameter int PhaseWidth = 34,
+  parameter int FreqWidth  = 24,
+  parameter int DtWidth    = 10,
+  parameter int MinPeriod  = 32
+) (
+  input  wire        clk_i,
+  input  wire        rst_ni,
+  input  wire        sdi_i,
+  input  wire        shift_i,
+  output logic [2:0] gate_hi_o,
+  output logic [2:0] gate_lo_o,
+  output logic [2:0] sector_o,
+  output logic       running_o,
+  output logic       m_clamp_o,
+  output logic       period_clamp_o
+);
+  localparam int NIn = 1 + FreqWidth + 16 + CntWidth + 2 * DtWidth + 7;
+  localparam int B   = 1 + FreqWidth + 16 + CntWidth + DtWidth;   // first safety input bit
+
+  logic [NIn-1:0] in_q;
+  always_ff @(posedge clk_i) begin
+    if (shift_i) in_q <= {in_q[NIn-2:0], sdi_i};
+  end
+
+  svpwm_core #(
+    .CntWidth   (CntWidth),
+    .PhaseWidth (PhaseWidth),
+    .FreqWidth  (FreqWidth),
+    .DtWidth    (DtWidth),
+    .MinPeriod  (MinPeriod)
+  ) u_core (
+    .clk_i          (clk_i),
+    .rst_ni         (rst_ni),
+    .en_i           (in_q[0]),
+    .freq_i         (in_q[1 +: FreqWidth]),
+    .m_i            (in_q[1 + FreqWidth +: 16]),
+    .period_i       (in_q[1 + FreqWidth + 16 +: CntWidth]),
+    .dt_i           (in_q[1 + FreqWidth + 16 + CntWidth +: DtWidth]),
+    .mp_i           (in_q[B +: DtWidth]),
+    .fault_i        (in_q[B + DtWidth]),
+    .fault_clear_i  (in_q[B + DtWidth + 1]),
+    .trip_cbc_i     (in_q[B + DtWidth + 2]),
+    .safe_lo_i      (in_q[B + DtWidth + 3]),
+    .pol_i          (in_q[B + DtWidth + 4 +: 2]),
+    .lock_i         (in_q[B + DtWidth + 6]),
+    .gate_hi_o      (gate_hi_o),
+    .gate_lo_o      (gate_lo_o),
+    .pole_o         (),
+    .carrier_o      (),
+    .carrier_up_o   (),
+    .valley_o       (),
+    .peak_o         (),
+    .sector_o       (sector_o),
+    .cmp_o          (),
+    .period_o       (),
+    .running_o      (running_o),
+    .m_clamp_o      (m_clamp_o),
+    .period_clamp_o (period_clamp_o),
+    .freq_clamp_o   (),
+    .fault_o        (),
+    .tripped_o      (),
+    .locked_o       ()
+  );
+endmodule
+
+`default_nettype wire

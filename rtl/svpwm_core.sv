@@ -84,18 +84,18 @@ module svpwm_core #(
     initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
   end
 
-  // ---- run: en_i, but not in the first two clocks after reset, so that the configuration registers
-  // and then the idle loads (period clamped for the dead time, frequency) happen before the carrier
-  // starts ----------------------------------------------------------------------------------------
-  logic [1:0] armed_q;
+  // ---- run: en_i, but not in the first three clocks after reset, so that the configuration
+  // registers, the lowest legal period and then the idle loads (period clamped for the dead time,
+  // frequency) all happen before the carrier starts -----------------------------------------------
+  logic [2:0] armed_q;
   logic       run;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) armed_q <= '0;
-    else         armed_q <= {armed_q[0], 1'b1};
+    else         armed_q <= {armed_q[1:0], 1'b1};
   end
 
-  assign run = en_i && armed_q[1];
+  assign run = en_i && armed_q[2];
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -137,8 +137,25 @@ module svpwm_core #(
   assign thr            = {1'b0, dt_cfg_q} + {1'b0, mp_cfg_q};
   assign period_low     = (CntWidth'({thr, 1'b0}) > CntWidth'(MinPeriod)) ? CntWidth'({thr, 1'b0})
                                                                         : CntWidth'(MinPeriod);
-  assign period_under   = period_i < period_low;
-  assign period_clamped = period_under ? period_low : period_i;
+  assign period_under   = period_i < period_low_q;
+  assign period_clamped = period_under ? period_low_q : period_i;
+
+  // the lowest legal period is registered (off the sampling paths); dt / mp are used one clock later
+  // too (dt_use_q / mp_use_q), so a period is always clamped for the dead time it is used with
+  logic [CntWidth-1:0] period_low_q;
+  logic [DtWidth-1:0]  dt_use_q, mp_use_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      period_low_q <= CntWidth'(MinPeriod);
+      dt_use_q     <= '0;
+      mp_use_q     <= '0;
+    end else begin
+      period_low_q <= period_low;
+      dt_use_q     <= dt_cfg_q;
+      mp_use_q     <= mp_cfg_q;
+    end
+  end
   assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -FreqWidth'(FreqMax);
   assign freq_clamped   = !freq_over ? freq_i : freq_i[FreqWidth-1] ? -FreqWidth'(FreqMax)
                                                                      : FreqWidth'(FreqMax);
@@ -242,16 +259,16 @@ module svpwm_core #(
     if (!run || sample) begin             // sample point
       freq_d         = freq_clamped;
       period_next_d  = period_clamped;
-      dt_next_d      = dt_cfg_q;
-      mp_next_d      = mp_cfg_q;
+      dt_next_d      = dt_use_q;
+      mp_next_d      = mp_use_q;
       m_clamp_d      = m_over;
       period_clamp_d = period_under;
       freq_clamp_d   = freq_over;
     end
     if (snap_done) result_d = 1'b1;        // a result waits for the next valley
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration
-      dt_d     = dt_cfg_q;
-      mp_d     = mp_cfg_q;
+      dt_d     = dt_use_q;
+      mp_d     = mp_use_q;
       result_d = 1'b0;
       valid_d  = 1'b0;
     end else if (load) begin               // load point: all three phases, period, dt and mp together

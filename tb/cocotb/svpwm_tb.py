@@ -70,9 +70,9 @@ class CoreTB:
         d.rst_ni.value = 0
         await ClockCycles(d.clk, 3)
         d.rst_ni.value = 1
-        await ClockCycles(d.clk, 2)
+        await ClockCycles(d.clk, 3)   # the core runs 3 clocks after the reset release at the earliest
         self.model = CoreModel()
-        self.idle_cycles = 3          # clocks from reset release to cycle 0 of run() (en_i low)
+        self.idle_cycles = 4          # clocks from reset release to cycle 0 of run() (en_i low)
 
     def _cycle(self) -> int:
         return int(round(get_sim_time("ns") - self.t0)) // CLK_NS

@@ -32,6 +32,7 @@ REPO = Path(__file__).resolve().parents[1]
 for _p in (REPO / "model", REPO / "tb" / "cocotb"):
     if str(_p) not in sys.path:
         sys.path.insert(0, str(_p))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 F_CLK = 48e6
 P_VERMA = 1536          # 48 MHz / (2 * 1536) = 15.625 kHz
@@ -41,11 +42,18 @@ HARNESS = REPO / "tb" / "cocotb" / "svpwm_core" / "tb_svpwm_core.sv"
 TEST_DIR = REPO / "tb" / "cocotb" / "demo"
 
 POINTS = [
-    dict(name="minas_fig9_5p1hz", f_hz=5.1, m=0.102, period=P_VERMA, dt=DT_1US,
+    dict(name="minas_fig9_5p1hz", f_hz=5.1, m=0.102, period=P_VERMA, dt=DT_1US, save_edges=True,
          title="Minas Fig. 9: 5.1 Hz, m = 0.102 (V/f: 5.1/50 of full; Minas gives no m)"),
-    dict(name="minas_fig10_50hz", f_hz=50.0, m=0.9, period=P_VERMA, dt=DT_1US,
+    dict(name="minas_fig10_50hz", f_hz=50.0, m=0.9, period=P_VERMA, dt=DT_1US, save_edges=True, revs=2,
          title="Minas Fig. 10: 50 Hz, m = 0.9 (our choice; Minas gives no m)"),
 ]
+# m sweep at 50 Hz (2 revolutions each = 625 carrier periods: no spectral leakage); m = 0.9 is the Fig. 10 point
+SWEEP = [dict(name=f"sweep_50hz_m{int(round(m * 100)):03d}", f_hz=50.0, m=m, period=P_VERMA, dt=DT_1US,
+              save_edges=True, revs=2, vcd=False, title=f"m sweep: 50 Hz, m = {m}")
+         for m in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)]
+# AVR495 Fig. 6-1: speed steps with the RTL in the loop (V/f + PI, motor model fed by the gate edges)
+SPEED = dict(name="speed_loop_vf", kind="speed_loop", t_end_s=2.0, period=P_VERMA, dt=DT_1US, f_hz=0.0, m=0.0,
+             title="AVR495 Fig. 6-1: +700 -> -700 rpm, V/f + PI speed loop, RTL in the loop")
 
 
 class SetupError(RuntimeError):
@@ -114,6 +122,17 @@ def rel(path) -> str:
 
 def print_table(r: dict) -> None:
     pt = r["point"]
+    if pt.get("kind") == "speed_loop":
+        print()
+        print(f"== {pt['title']}")
+        if r.get("missing"):
+            print("   no results: the simulation did not complete this point (see the log above)")
+            return
+        print(f"   {r['n_periods']} carrier periods, {r['cycles']:,} clocks ({r['cycles'] / F_CLK:.2f} s motor time) in "
+              f"{r['sim_wall_s']:.1f} s ({r['cycles_per_s'] / 1e6:.2f} M cycles/s incl. the motor model); inverter: "
+              f"{r['inverter']}; final speed {r['final_speed_rpm']:.1f} rpm; RTL == model on every edge: "
+              f"{_pf(r['rtl_equals_model'])}")
+        return
     print()
     print(f"== {pt.get('title', pt['name'])}")
     if r.get("missing"):
@@ -172,16 +191,26 @@ def main(argv=None) -> int:
     ap.add_argument("--only", metavar="NAME", action="append", choices=[p["name"] for p in POINTS],
                     help="run only this operating point (repeatable)")
     ap.add_argument("--out", type=Path, default=DEMO_DIR, help=f"output directory (default {rel(DEMO_DIR)})")
+    ap.add_argument("--no-sweep", action="store_true", help="skip the m sweep at 50 Hz")
+    ap.add_argument("--no-speed", action="store_true", help="skip the closed speed loop (~2.5 min on Verilator)")
+    ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
+    ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)
     points = [p for p in POINTS if not args.only or p["name"] in args.only]
+    if not args.only and not args.no_sweep:
+        points += SWEEP
+    if not args.only and not args.no_speed:
+        points.append(dict(SPEED, t_end_s=args.speed_time))
     try:
         check_env(args.sim)
     except SetupError as e:
         print(f"demo: ERROR: {e}", file=sys.stderr)
         return 2
     t0 = time.perf_counter()
-    print(f"==> demo: {len(points)} operating point(s) on {args.sim}, one revolution each "
-          f"(the 5.1 Hz point is ~9.4 M clocks)", flush=True)
+    print(f"==> demo: {len(points)} run(s) on {args.sim}: Minas' two points (1 and 2 revolutions), "
+          f"{len(SWEEP) if SWEEP[0] in points else 0} m-sweep points at 50 Hz, "
+          f"{'the speed loop (' + str(args.speed_time) + ' s motor time)' if any(p.get('kind') for p in points) else 'no speed loop'}",
+          flush=True)
     results, err = run_points(args.sim, points, args.out.resolve())
     wall = time.perf_counter() - t0
     print("\n" + "=" * 100)
@@ -201,8 +230,28 @@ def main(argv=None) -> int:
         print(f"waveforms (VCD, gate_hi/lo_a/b/c + pole_a/b/c, 1 ns units, 48 MHz core clock): {', '.join(vcds)}")
     print(f"results (JSON): {rel(out)} (per point: {rel(args.out.resolve())}/<point>.json)")
     ok = err is None and all(r.get("ok") for r in results)
+    report = None
+    if not args.no_report and ok:
+        import report as rep
+        done = {r["point"]["name"] for r in results if not r.get("missing")}
+        t1 = time.perf_counter()
+        print("==> demo: spectra, motor, plots, report", flush=True)
+        m = rep.build(args.out.resolve(), [p["name"] for p in POINTS if p["name"] in done],
+                      [p["name"] for p in SWEEP if p["name"] in done],
+                      SPEED["name"] if SPEED["name"] in done else None)
+        report = args.out.resolve() / "report.md"
+        print("\nfidelity (line voltage, dead time off):")
+        for line in rep.fidelity_table(m):
+            print("  " + line)
+        ss = (m.get("speed_loop") or {}).get("summary")
+        if ss:
+            print(f"speed loop: {json.dumps(ss)}")
+        print(f"(analysis {time.perf_counter() - t1:.0f} s)")
+        wall = time.perf_counter() - t0
     if err:
         print(f"simulation run: FAILED: {err.splitlines()[0]}")
+    if report:
+        print(f"report: {rel(report)} (figures {rel(report.parent)}/fig_*.png, metrics {rel(report.parent / 'metrics.json')})")
     print(f"demo: {'PASS' if ok else 'FAIL'} ({wall:.0f} s wall, including the Verilator build if needed)")
     return 0 if ok else 1
 

@@ -38,8 +38,9 @@ import time
 from pathlib import Path
 
 import cocotb
+import cocotb.utils
 import numpy as np
-from cocotb.triggers import RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i, line_fundamental
@@ -51,24 +52,35 @@ F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
 
 
-def default_periods(f_hz: float, period: int) -> int:
-    """Carrier periods covering at least one revolution (+2 for the pipeline start)."""
+def default_periods(f_hz: float, period: int, revs: float = 1) -> int:
+    """Carrier periods covering at least ``revs`` revolutions (+2 for the pipeline start)."""
     if f_hz == 0:
         return 40
-    return math.ceil(F_CLK / (2 * period) / abs(f_hz)) + 2
+    return math.ceil(revs * F_CLK / (2 * period) / abs(f_hz)) + 2
 
 
 def ideal_worst(exp) -> tuple[float, int]:
-    """Worst |C - C_ideal| (counts) over the modulated periods and the period where it occurs.
+    """Worst |C - C_ideal| (counts) of the duty calculator over the modulated periods and the period
+    where it occurs.
 
     Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (exp.theta[n]) and the
-    clamped/quantised m it used (exp.m[n]) -- as ideal_errors() in the core test, vectorised."""
+    clamped/quantised m it used (exp.m[n]) -- as ideal_errors() in the core test, vectorised. The values
+    the core applies are these after the minimum-pulse rule (dead time + minimum pulse), which moves a
+    value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that is asserted here."""
     n = np.arange(1, len(exp.cmp))
-    theta = np.array([exp.theta[i] for i in n], dtype=np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
-    m = np.array([exp.m[i] for i in n], dtype=np.float64) / fixed.M_ONE
-    p = np.array([exp.period[i] for i in n], dtype=np.float64)
-    c = np.array([exp.cmp[i] for i in n], dtype=np.float64)
-    err = np.max(np.abs(c - ideal_compare(theta, m, p)), axis=-1)
+    th_int = np.array([exp.theta[i] for i in n], dtype=np.int64)
+    sector = th_int >> fixed.PHASE_WIDTH
+    a16 = (th_int >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)) & 0xFFFF
+    m_w = np.array([exp.m[i] for i in n], dtype=np.int64)
+    p_i = np.array([exp.period[i] for i in n], dtype=np.int64)
+    raw = fixed.compare_values_np(sector, a16, m_w, p_i)
+    for k, i in enumerate(n):
+        thr = exp.dt[i] + exp.mp[i]
+        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in raw[k])
+        assert snapped == tuple(exp.cmp[i]), f"period {i}: applied {exp.cmp[i]} != snap(raw) {snapped}"
+        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(exp.cmp[i], raw[k]))
+    theta = th_int.astype(np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
+    err = np.max(np.abs(raw - ideal_compare(theta, m_w / fixed.M_ONE, p_i.astype(np.float64))), axis=-1)
     k = int(np.argmax(err))
     return float(err[k]), int(n[k])
 
@@ -126,7 +138,7 @@ async def run_point(dut, pt: dict) -> None:
     tb = CoreTB(dut)
     fw, mw = fixed.freq_word(pt["f_hz"]), fixed.m_word(pt["m"])
     u = Inputs(freq=fw, m=mw, period=int(pt["period"]), dt=int(pt["dt"]))
-    n = int(pt.get("n_periods") or default_periods(pt["f_hz"], u.period))
+    n = int(pt.get("n_periods") or default_periods(pt["f_hz"], u.period, pt.get("revs", 1)))
     res: dict = dict(point=pt, sim=getattr(cocotb, "SIM_NAME", "?"), freq_word=fw, m_word=mw,
                      f_out_hz_exact=fw * fixed.freq_lsb_hz(), f_sw_hz=F_CLK / (2 * u.period),
                      n_periods=n, failures=[])
@@ -208,6 +220,15 @@ async def run_point(dut, pt: dict) -> None:
                   f"{pt.get('title', pt['name'])}: f = {pt['f_hz']} Hz (word {fw}), m = {pt['m']} (word {mw}), "
                   f"P = {u.period}, dt = {u.dt} clocks, {n} carrier periods, sim {res['sim']}")
         res["vcd"] = str(vcd)
+    if pt.get("save_edges"):
+        npz = out_dir / f"{pt['name']}_edges.npz"
+        np.savez_compressed(npz, pole_edges=np.asarray(rtl.pole_edges, dtype=np.int64).reshape(-1, 2),
+                            gate_edges=np.asarray(rtl.gate_edges, dtype=np.int64).reshape(-1, 2),
+                            valley=np.asarray(rtl.valley, dtype=np.int64),
+                            cmp=np.asarray(rtl.cmp, dtype=np.int64), sector=np.asarray(rtl.sector, dtype=np.int64),
+                            period=np.asarray(rtl.period, dtype=np.int64), freq_word=fw, m_word=mw, dt=u.dt,
+                            end=exp.end)
+        res["edges_npz"] = str(npz)
     res["test_wall_s"] = time.perf_counter() - t_test
     res["ok"] = not fails
     (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2) + "\n")
@@ -217,9 +238,107 @@ async def run_point(dut, pt: dict) -> None:
     assert not fails, "\n".join(fails)
 
 
+async def run_speed_loop(dut, pt: dict) -> None:
+    """Closed loop with the RTL in it: motor (svpwm_model.motor, driven by the RTL's gate edges with dead
+    time resolved by the current sign) + V/f + PI speed loop, evaluated at every carrier valley from the
+    edges the RTL has produced so far; the result sets the frequency and m inputs sampled at the next peak.
+    Afterwards the golden model replays the recorded inputs and must equal the RTL on every edge."""
+    import sys
+
+    from tqdm import tqdm
+
+    from svpwm_model import motor as M
+    from svpwm_tb import RtlRun, _squash
+
+    t_test = time.perf_counter()
+    out_dir = Path(os.environ.get("SVPWM_DEMO_OUT", "."))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    P, dt = int(pt["period"]), int(pt["dt"])
+    n_per = int(round(pt["t_end_s"] * F_CLK / (2 * P)))
+    d = dut
+    tb = CoreTB(dut)
+    mot = M.InverterMotor(gates=dt > 0, trace=True, trace_every=int(pt.get("trace_every", 4)))
+    loop = M.SpeedLoop(pi=M.PISpeed(kp=pt.get("kp", M.PISpeed.kp), ki=pt.get("ki", M.PISpeed.ki)),
+                       every=int(pt.get("every", 1)))
+    fw, mw = loop.update(0, mot)
+    idle = Inputs(freq=fw, m=mw, period=P, dt=dt)
+    inputs = [idle]
+    await tb.reset(idle)
+    tb.model.idle(tb.idle_cycles)
+    tb.set_inputs(idle)
+    await RisingEdge(d.clk)
+    d.en_i.value = 1
+    tb.t0 = cocotb.utils.get_sim_time("ns")
+    mon: list = []
+    task = cocotb.start_soon(tb._monitor(mon))
+    await FallingEdge(d.clk)
+    rtl = RtlRun(valley=[0])
+    k_mon = 0
+    t_sim0 = time.perf_counter()
+    bar = tqdm(total=n_per, desc="speed loop (RTL in the loop, Verilator)", unit="period", file=sys.stderr,
+               mininterval=2.0, dynamic_ncols=False, ncols=100)
+    for n in range(1, n_per + 1):
+        await RisingEdge(d.valley_o)
+        await ReadOnly()
+        c = tb._cycle()
+        rtl.valley.append(c)
+        new = mon[k_mon:]
+        k_mon = len(mon)
+        mot.push([(cy, w & 0x3F) if dt > 0 else (cy, w >> 6) for cy, w in new])
+        mot.advance_to(c)
+        bar.update(1)
+        if n == n_per:
+            break
+        w = tb.cmp_width
+        cv = int(d.cmp_o.value)
+        rtl.cmp.append(tuple((cv >> (w * ph)) & ((1 << w) - 1) for ph in range(3)))
+        rtl.sector.append(int(d.sector_o.value))
+        rtl.period.append(int(d.period_o.value))
+        rtl.running.append(int(d.running_o.value))
+        fw, mw = loop.update(c, mot)
+        u = Inputs(freq=fw, m=mw, period=P, dt=dt)
+        inputs.append(u)
+        await FallingEdge(d.clk)
+        tb.set_inputs(u)
+    bar.close()
+    await FallingEdge(d.clk)
+    t_sim = time.perf_counter() - t_sim0
+    task.cancel()
+    exp = tb.model.run(idle, inputs, n_per)
+    words = [(cy, w) for cy, w in mon if cy < exp.end]
+    rtl.pole_edges = _squash([(cy, w >> 6) for cy, w in words])
+    rtl.gate_edges = _squash([(cy, w & 0x3F) for cy, w in words])
+    fails = []
+    try:
+        tb.compare(rtl, exp)
+        eq = True
+    except AssertionError as e:
+        eq = False
+        fails.append(f"RTL != model: {e}")
+    try:
+        tb.check_harness()
+    except AssertionError as e:
+        fails.append(str(e))
+    lg = loop.log.as_arrays()
+    tt, ii, ww = mot.trace.arrays()
+    npz = out_dir / f"{pt['name']}.npz"
+    np.savez_compressed(npz, trace_t=tt, trace_i=ii, trace_wm=ww, **{f"log_{k}": v for k, v in lg.items()})
+    res = dict(point=pt, sim=getattr(cocotb, "SIM_NAME", "?"), n_periods=n_per, cycles=exp.end,
+               sim_wall_s=t_sim, cycles_per_s=exp.end / t_sim, rtl_equals_model=eq,
+               gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges), npz=str(npz), failures=fails,
+               inverter="gate edges, dead time resolved by current sign" if dt > 0 else "pole edges (ideal)",
+               final_speed_rpm=mot.speed_rpm(), test_wall_s=time.perf_counter() - t_test, ok=not fails)
+    (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2) + "\n")
+    dut._log.info("%s: %d periods, %d cycles in %.1f s, RTL == model: %s", pt["name"], n_per, exp.end, t_sim, eq)
+    assert not fails, "\n".join(fails)
+
+
 def _make_test(pt: dict):
     async def point_test(dut):
-        await run_point(dut, pt)
+        if pt.get("kind") == "speed_loop":
+            await run_speed_loop(dut, pt)
+        else:
+            await run_point(dut, pt)
 
     point_test.__name__ = point_test.__qualname__ = pt["name"]
     point_test.__doc__ = pt.get("title") or pt["name"]

@@ -1,0 +1,403 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Induction motor on a two-level inverter, driven by switching edges; V/f law with boost and a PI speed loop.
+
+Motor: the standard dq (space-vector) model in the stationary frame (Krause, "Analysis of Electric
+Machinery", ch. 4/6 with the reference frame speed 0; Leonhard, "Control of Electrical Drives" ch. 10, the
+AVR495's reference [2]), states stator and rotor flux linkage space vectors psi_s, psi_r (complex, V s) and
+the mechanical speed w_m (rad/s):
+
+    d psi_s / dt = v_s - R_s i_s
+    d psi_r / dt = -R_r i_r + j p w_m psi_r                (p: pole pairs; rotor quantities referred to the stator)
+    i_s = (L_r psi_s - L_m psi_r) / D,   i_r = (L_s psi_r - L_m psi_s) / D,   D = L_s L_r - L_m^2
+    T_e = 3/2 p Im(conj(psi_s) i_s),     J d w_m / dt = T_e - B w_m - T_c tanh(w_m / 1 rad/s) - T_load
+
+Space vectors are amplitude invariant, x = 2/3 (x_a + a x_b + a^2 x_c), a = e^{j 2 pi/3}: a balanced set of
+phase quantities with peak X maps to |x| = X, and i_a = Re(i_s).  The inverter output is
+v_s = 2/3 Udc (s_a + a s_b + a^2 s_c) for the switching functions s_x in {0, 1} (the star point floats, the
+common mode has no effect: 1 + a + a^2 = 0).
+
+Integration: the voltage is constant between switching edges, so the model is stepped segment by segment
+(classical RK4 over each segment, split into sub-steps of at most ``h_max`` = 20 us; the electrical time
+constants are >= ~4 ms and |lambda h| <= 0.03, far inside RK4's accuracy region -- checked in
+test_motor.py against the steady state of the equivalent circuit).
+
+Dead time (``gates=True``): edges are gate words {lo[2:0], hi[2:0]} (rtl/svpwm_core.sv); while both gates of a
+leg are off the freewheeling diodes set the pole by the phase current's sign: i_x > 0 (out of the inverter)
+-> lower diode -> s_x = 0; i_x < 0 -> s_x = 1 (sign taken at the start of each segment; a zero crossing
+inside a 1 us dead-time segment is not resolved).  The resolved pole words are recorded (``effective``) so
+the dead-time-distorted voltage can be analysed like any other edge stream.
+"""
+from __future__ import annotations
+
+import cmath
+import math
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+
+A = cmath.exp(2j * math.pi / 3)
+F_CLK = 48e6
+
+
+@dataclass(frozen=True)
+class MotorParams:
+    """A 0.75 kW, 4-pole, 50 Hz cage induction motor, star-equivalent values at 230 V line-to-line.
+
+    Source / reasoning (no single data sheet gives dq parameters, so they are derived): catalogue data of
+    IEC 80-frame 0.75 kW 4-pole IE2 motors (230 V delta / 400 V star, 50 Hz) are typically: rated speed
+    1395-1420 rpm, rated current 3.2-3.5 A at 230 V, cos phi 0.74-0.78, breakdown/rated torque 2.2-2.6,
+    no-load current ~55-60 % of rated, rotor inertia 0.0018-0.0024 kg m^2.  The equivalent-circuit values
+    below (star equivalent of the delta-connected machine at 230 V, i.e. the 400 V-star values times
+    (230/400)^2) reproduce those figures: at 230 V / 50 Hz and slip 0.064 (1404 rpm) the equivalent circuit
+    gives 0.75 kW shaft power (5.1 N m), 3.1 A, cos phi 0.76; no-load current 1.9 A; breakdown torque 11.4 N m
+    at slip 0.32 (test_motor.py checks these).  R_s = 3.5 ohm is the usual order for this size (the 400 V
+    star value ~10.5 ohm x 1/3), L_ls = L_lr (NEMA design A/B split of the blocked-rotor reactance).
+    J = 0.005 kg m^2: the motor (0.0021) plus a coupled load/brake of twice its inertia, as on a test
+    bench like AVR495's; B and T_c: bearing and fan friction, ~1.5 % of rated torque at rated speed.
+    """
+    Rs: float = 3.5            # ohm
+    Rr: float = 3.1            # ohm, referred to the stator
+    Lls: float = 0.015         # H
+    Llr: float = 0.015         # H
+    Lm: float = 0.21           # H
+    p: int = 2                 # pole pairs (4 poles)
+    J: float = 0.005           # kg m^2 (motor 0.0021 + load)
+    B: float = 0.0003          # N m s / rad
+    Tc: float = 0.03           # N m, Coulomb friction (tanh-smoothed)
+    f_rated: float = 50.0      # Hz
+    V_rated_line_rms: float = 230.0
+    P_rated: float = 750.0     # W
+
+    @property
+    def Ls(self) -> float:
+        return self.Lls + self.Lm
+
+    @property
+    def Lr(self) -> float:
+        return self.Llr + self.Lm
+
+
+# Udc: rectified 230 V mains would give 325 V; we take Udc = 360 V so that the demo's 50 Hz point (m = 0.9,
+# line fundamental peak m * Udc = 324 V) is the rated 230 V rms line voltage: m = 0.9 is "full voltage" in
+# the V/f law and leaves 10 % for the boost/regulation headroom.
+UDC = 360.0
+
+
+def equivalent_circuit(mp: MotorParams, f_hz: float, v_phase_rms: float, slip: float) -> dict:
+    """Steady state from the per-phase T equivalent circuit (star equivalent)."""
+    w = 2 * math.pi * f_hz
+    zm = 1j * w * mp.Lm
+    zr = mp.Rr / slip + 1j * w * mp.Llr
+    z = mp.Rs + 1j * w * mp.Lls + zm * zr / (zm + zr)
+    i_s = v_phase_rms / z
+    i_r = i_s * zm / (zm + zr)
+    p_ag = 3 * abs(i_r) ** 2 * mp.Rr / slip
+    w_sync = w / mp.p
+    torque = p_ag / w_sync
+    return dict(i_s_rms=abs(i_s), pf=math.cos(cmath.phase(z)), torque=torque,
+                p_shaft=torque * (1 - slip) * w_sync, speed_rpm=(1 - slip) * 60 * f_hz / mp.p,
+                i_s_phasor=i_s, i_r_phasor=i_r)
+
+
+def steady_state_fluxes(mp: MotorParams, f_hz: float, v_peak: complex, slip: float):
+    """(psi_s, psi_r) space vectors at the instant the voltage vector is ``v_peak`` (complex, phase peak):
+    sinusoidal steady state at the electrical speed (1 - slip) f."""
+    w = 2 * math.pi * f_hz
+    wr = (1 - slip) * w
+    # v = Rs is + j w psi_s ; 0 = Rr ir + j (w - wr) psi_r ; psi_s = Ls is + Lm ir ; psi_r = Lm is + Lr ir
+    M = np.array([[mp.Rs + 1j * w * mp.Ls, 1j * w * mp.Lm],
+                  [1j * (w - wr) * mp.Lm, mp.Rr + 1j * (w - wr) * mp.Lr]])
+    i_s, i_r = np.linalg.solve(M, np.array([v_peak, 0.0]))
+    return complex(mp.Ls * i_s + mp.Lm * i_r), complex(mp.Lm * i_s + mp.Lr * i_r)
+
+
+def slip_for_torque(mp: MotorParams, f_hz: float, v_phase_rms: float, torque: float) -> float:
+    """Smallest slip (stable branch) at which the equivalent circuit gives ``torque``."""
+    lo, hi = 1e-7, 0.3
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        if equivalent_circuit(mp, f_hz, v_phase_rms, mid)["torque"] < torque:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+@dataclass
+class Trace:
+    """Samples at every segment end (and sub-step): time (cycles), stator current vector, speed (rad/s)."""
+    t: list = field(default_factory=list)
+    i: list = field(default_factory=list)
+    wm: list = field(default_factory=list)
+
+    def arrays(self):
+        return np.asarray(self.t, dtype=np.float64), np.asarray(self.i, dtype=np.complex128), \
+            np.asarray(self.wm, dtype=np.float64)
+
+
+class InverterMotor:
+    """The motor on an inverter fed by edge streams; advance it with ``push`` + ``advance_to``."""
+
+    def __init__(self, mp: MotorParams = MotorParams(), udc: float = UDC, gates: bool = False,
+                 f_clk: float = F_CLK, h_max: float = 20e-6, fixed_speed: bool = False, t_load: float = 0.0,
+                 trace: bool = True, trace_every: int = 1):
+        self.mp, self.udc, self.gates, self.f_clk = mp, udc, gates, f_clk
+        self.h_max, self.fixed_speed, self.t_load = h_max, fixed_speed, t_load
+        self.ps = 0j
+        self.pr = 0j
+        self.wm = 0.0
+        self.t = 0                     # cycles
+        self.word = 0                  # current input word (pole word or gate word)
+        self.pending: deque = deque()
+        self.effective: list[tuple[int, int]] = []      # resolved pole words (cycle, word)
+        self._eff = -1
+        self.trace = Trace() if trace else None
+        self.trace_every = trace_every
+        self._nseg = 0
+        self.energy_in = 0.0           # J delivered by the inverter (integral of 3/2 Re(v conj(i)))
+        self._vs = [2.0 / 3.0 * udc * ((w & 1) + A * ((w >> 1) & 1) + A * A * ((w >> 2) & 1)) for w in range(8)]
+
+    # ---- inputs -----------------------------------------------------------------------------------
+    def push(self, edges, mask: int | None = None) -> None:
+        """Queue (cycle, word) changes (cycles >= the current time, sorted); with ``mask`` only those bits."""
+        mk = mask if mask is not None else -1
+        for c, w in edges:
+            self.pending.append((c, mk, w))
+
+    def set_state(self, ps: complex, pr: complex, wm: float) -> None:
+        self.ps, self.pr, self.wm = ps, pr, wm
+
+    def current(self) -> complex:
+        mp = self.mp
+        return (mp.Lr * self.ps - mp.Lm * self.pr) / (mp.Ls * mp.Lr - mp.Lm ** 2)
+
+    def phase_currents(self) -> tuple[float, float, float]:
+        i = self.current()
+        return i.real, (i * A.conjugate()).real, (i * A).real
+
+    def speed_rpm(self) -> float:
+        return self.wm * 60 / (2 * math.pi)
+
+    def _pole_word(self) -> int:
+        w = self.word
+        if not self.gates:
+            return w & 7
+        ia, ib, ic = self.phase_currents()
+        out = 0
+        for ph, i in enumerate((ia, ib, ic)):
+            hi, lo = (w >> ph) & 1, (w >> (ph + 3)) & 1
+            if hi:
+                s = 1
+            elif lo:
+                s = 0
+            else:                      # dead time: the diodes conduct
+                s = 0 if i > 0 else 1
+            out |= s << ph
+        return out
+
+    # ---- integration ------------------------------------------------------------------------------
+    def advance_to(self, t_end: int) -> None:
+        """Integrate up to cycle ``t_end`` applying the queued edges with cycles < t_end."""
+        q = self.pending
+        while self.t < t_end:
+            while q and q[0][0] <= self.t:
+                _, mk, w = q.popleft()
+                self.word = (self.word & ~mk) | (w & mk)
+            nxt = min(q[0][0], t_end) if q else t_end
+            self._segment(nxt)
+
+    def _segment(self, t_next: int) -> None:
+        pw = self._pole_word()
+        if pw != self._eff:
+            self.effective.append((self.t, pw))
+            self._eff = pw
+        v = self._vs[pw]
+        mp = self.mp
+        Rs, Rr, Ls, Lr, Lm, p = mp.Rs, mp.Rr, mp.Ls, mp.Lr, mp.Lm, mp.p
+        D = Ls * Lr - Lm * Lm
+        kt = 1.5 * p
+        J, B, Tc, TL = mp.J, mp.B, mp.Tc, self.t_load
+        fixed = self.fixed_speed
+        total = (t_next - self.t) / self.f_clk
+        n = max(1, int(math.ceil(total / self.h_max)))
+        h = total / n
+        ps, pr, wm = self.ps, self.pr, self.wm
+        e_in = 0.0
+
+        def f(ps, pr, wm):
+            i_s = (Lr * ps - Lm * pr) / D
+            i_r = (Ls * pr - Lm * ps) / D
+            dps = v - Rs * i_s
+            dpr = -Rr * i_r + 1j * p * wm * pr
+            if fixed:
+                return dps, dpr, 0.0, i_s
+            te = kt * (ps.real * i_s.imag - ps.imag * i_s.real)
+            dwm = (te - B * wm - Tc * math.tanh(wm) - TL) / J
+            return dps, dpr, dwm, i_s
+
+        tr = self.trace
+        for k in range(n):
+            k1 = f(ps, pr, wm)
+            k2 = f(ps + 0.5 * h * k1[0], pr + 0.5 * h * k1[1], wm + 0.5 * h * k1[2])
+            k3 = f(ps + 0.5 * h * k2[0], pr + 0.5 * h * k2[1], wm + 0.5 * h * k2[2])
+            k4 = f(ps + h * k3[0], pr + h * k3[1], wm + h * k3[2])
+            ps = ps + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+            pr = pr + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+            wm = wm + h / 6 * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2])
+            i_avg = (k1[3] + 2 * k2[3] + 2 * k3[3] + k4[3]) / 6
+            e_in += 1.5 * (v * i_avg.conjugate()).real * h
+        self.ps, self.pr, self.wm = ps, pr, wm
+        self.energy_in += e_in
+        self.t = t_next
+        self._nseg += 1
+        if tr is not None and self._nseg % self.trace_every == 0:
+            tr.t.append(t_next)
+            tr.i.append((Lr * ps - Lm * pr) / D)
+            tr.wm.append(wm)
+
+
+# ---- V/f law and speed loop ----------------------------------------------------------------------------
+@dataclass
+class VfLaw:
+    """AVR495 constant V/f with boost: m = min(m_max, m_boost + (m_rated - m_boost) |f| / f_rated).
+
+    m_boost = 0.06: 0.06 * 360 V / sqrt3 = 12.5 V phase peak ~ R_s * sqrt2 * 2.5 A, i.e. the stator
+    resistance drop at about the rated magnetising current, so the flux is kept near rated at low f
+    (AVR495 sec. 6.2: near f = 0 "the stator voltage magnitude is equal to the boost voltage")."""
+    m_boost: float = 0.06
+    m_rated: float = 0.9
+    f_rated: float = 50.0
+    m_max: float = 1.0
+
+    def m(self, f_hz: float) -> float:
+        return min(self.m_max, self.m_boost + (self.m_rated - self.m_boost) * abs(f_hz) / self.f_rated)
+
+
+@dataclass
+class PISpeed:
+    """PI speed controller whose output is the stator frequency (AVR495 Fig. 4-8): f = kp e + ki int e dt,
+    e = n_ref - n (rpm), f in Hz, clamped to +-f_max with a clamped integrator (anti-windup)."""
+    kp: float = 0.01           # Hz per rpm
+    ki: float = 0.3            # Hz per (rpm s)
+    f_max: float = 60.0
+    integ: float = 0.0
+
+    def step(self, n_ref: float, n: float, dt: float) -> float:
+        e = n_ref - n
+        self.integ = min(self.f_max, max(-self.f_max, self.integ + self.ki * e * dt))
+        return min(self.f_max, max(-self.f_max, self.integ + self.kp * e))
+
+
+def speed_profile(t: float) -> float:
+    """Speed reference (rpm): +700 rpm from t = 0 (start at rest), -700 rpm from t = 0.8 s (AVR495 Fig. 6-1)."""
+    return 700.0 if t < 0.8 else -700.0
+
+
+@dataclass
+class LoopLog:
+    """Per-update log of the speed loop (one entry per carrier period at which the inputs are set)."""
+    t: list = field(default_factory=list)          # s, valley time
+    n_ref: list = field(default_factory=list)      # rpm
+    n: list = field(default_factory=list)          # rpm
+    f: list = field(default_factory=list)          # Hz commanded (before word rounding)
+    m: list = field(default_factory=list)
+    freq_word: list = field(default_factory=list)
+    m_word: list = field(default_factory=list)
+    i_peak: list = field(default_factory=list)     # |i_s| (A) at the valley
+    torque: list = field(default_factory=list)     # N m at the valley
+
+    def as_arrays(self) -> dict:
+        return {k: np.asarray(v) for k, v in self.__dict__.items()}
+
+
+class SpeedLoop:
+    """V/f + PI speed loop evaluated at carrier valleys: ``update(t_cycles, motor)`` returns (freq_word, m_word).
+
+    Used identically by the RTL co-simulation (tb/cocotb/demo/demo_runs.py) and by the pure-model loop
+    below. ``every``: the controller runs every ``every`` carrier periods and holds its output in between."""
+
+    def __init__(self, vf: VfLaw | None = None, pi: PISpeed | None = None, profile=speed_profile,
+                 f_clk: float = F_CLK, every: int = 1):
+        self.vf, self.pi = vf or VfLaw(), pi or PISpeed()
+        self.profile, self.f_clk, self.every = profile, f_clk, every
+        self.log = LoopLog()
+        self._k = 0
+        self._t_last = None
+        self._out = (0, 0)
+
+    def update(self, t_cycles: int, motor: InverterMotor) -> tuple[int, int]:
+        from . import fixed
+        t = t_cycles / self.f_clk
+        if self._k % self.every == 0:
+            n = motor.speed_rpm()
+            n_ref = self.profile(t)
+            dt = 0.0 if self._t_last is None else t - self._t_last
+            f = self.pi.step(n_ref, n, dt)
+            m = self.vf.m(f)
+            self._out = (fixed.freq_word(f, self.f_clk), fixed.m_word(m))
+            self._t_last = t
+            lg = self.log
+            i = motor.current()
+            mp = motor.mp
+            pr = motor.pr
+            te = 1.5 * mp.p * mp.Lm / mp.Lr * (pr.real * i.imag - pr.imag * i.real)
+            for k, v in (("t", t), ("n_ref", n_ref), ("n", n), ("f", f), ("m", m), ("freq_word", self._out[0]),
+                         ("m_word", self._out[1]), ("i_peak", abs(i)), ("torque", te)):
+                getattr(lg, k).append(v)
+        self._k += 1
+        return self._out
+
+
+def run_speed_loop_model(t_end_s: float, period: int = 1536, loop: SpeedLoop | None = None,
+                         motor: InverterMotor | None = None, progress: bool = False):
+    """The closed loop against a replica of the core's timeline and bit-exact compare values
+    (fixed.compare_values; poles, ideal inverter, no dead time): for tuning, tests and as a fallback.
+    Returns (loop, motor)."""
+    from . import fixed
+    loop = loop or SpeedLoop()
+    motor = motor or InverterMotor(gates=False)
+    full = 6 << fixed.PHASE_WIDTH
+    n_periods = int(round(t_end_s * F_CLK / (2 * period)))
+    theta, f_cur, cmp_cur, t = 0, 0, None, 0
+    it = range(n_periods)
+    if progress:
+        from tqdm import tqdm
+        it = tqdm(it, desc="speed loop (model)", unit="period", mininterval=1.0)
+    for n in it:
+        if cmp_cur is not None:
+            ev = []
+            for ph, c in enumerate(cmp_cur):
+                if c < period:
+                    ev += [(t + c + 1, 1 << ph, 1 << ph), (t + 2 * period - c + 1, 1 << ph, 0)]
+            ev.sort(key=lambda e: e[0])
+            motor.pending.extend(ev)
+        motor.advance_to(t)
+        fw, mw = loop.update(t, motor)
+        theta = (theta + f_cur * period) % full
+        sector, angle = theta >> fixed.PHASE_WIDTH, theta & ((1 << fixed.PHASE_WIDTH) - 1)
+        cmp_cur_next = fixed.compare_values(sector, angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS), mw, period)
+        f_cur = fw
+        theta = (theta + f_cur * period) % full
+        # edges of period n were queued above from cmp_cur; the next period uses cmp_cur_next
+        t += 2 * period
+        motor.advance_to(t - 2 * period + 1)     # keep the queue short
+        cmp_cur = cmp_cur_next
+    motor.advance_to(t)
+    return loop, motor
+
+
+def word_edges(intervals) -> list[tuple[float, int]]:
+    """(time, pole word) changes from per-phase high intervals [(starts, ends)] x 3."""
+    ev = []
+    for ph, (a, b) in enumerate(intervals):
+        ev += [(float(x), ph, 1) for x in a] + [(float(x), ph, 0) for x in b]
+    ev.sort(key=lambda e: (e[0], e[2]))          # at equal times: fall before rise
+    out, w = [], 0
+    for t, ph, v in ev:
+        w = (w & ~(1 << ph)) | (v << ph)
+        if out and out[-1][0] == t:
+            out[-1] = (t, w)
+        else:
+            out.append((t, w))
+    return out

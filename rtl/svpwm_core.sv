@@ -137,8 +137,6 @@ module svpwm_core #(
   assign thr            = {1'b0, dt_cfg_q} + {1'b0, mp_cfg_q};
   assign period_low     = (CntWidth'({thr, 1'b0}) > CntWidth'(MinPeriod)) ? CntWidth'({thr, 1'b0})
                                                                         : CntWidth'(MinPeriod);
-  assign period_under   = period_i < period_low_q;
-  assign period_clamped = period_under ? period_low_q : period_i;
 
   // the lowest legal period is registered (off the sampling paths); dt / mp are used one clock later
   // too (dt_use_q / mp_use_q), so a period is always clamped for the dead time it is used with
@@ -156,6 +154,10 @@ module svpwm_core #(
       mp_use_q     <= mp_cfg_q;
     end
   end
+
+  assign period_under   = period_i < period_low_q;
+  assign period_clamped = period_under ? period_low_q : period_i;
+
   assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -FreqWidth'(FreqMax);
   assign freq_clamped   = !freq_over ? freq_i : freq_i[FreqWidth-1] ? -FreqWidth'(FreqMax)
                                                                      : FreqWidth'(FreqMax);

@@ -20,6 +20,7 @@ module svpwm_carrier #(
   output logic [CntWidth-1:0] period_o,    // active half period
   output logic                valley_o,    // running and count == 0: first cycle of a carrier period
   output logic                peak_o,      // running and count == period: the middle of the period
+  output logic                pre_peak_o,  // the next clock is a peak (registered-peak detect input)
   output logic                load_o       // shadow load strobe: the next cycle is a valley (or idle)
 );
 
@@ -30,6 +31,8 @@ module svpwm_carrier #(
   logic [CntWidth-1:0] count_d, count_q, period_d, period_q;
   logic                up_d, up_q;
   logic                peak_d, peak_q;     // registered peak detect (keeps the compare off later paths)
+  logic [CntWidth-1:0] pm1_d, pm1_q;       // period - 1, registered with the period (no subtractor)
+  logic                top;                // count == period - 1
 
   assign load_o = !run_i || (!up_q && count_q == CntWidth'(1));
 
@@ -37,15 +40,17 @@ module svpwm_carrier #(
     count_d  = count_q;
     up_d     = up_q;
     period_d = load_o ? period_i : period_q;
+    pm1_d    = load_o ? period_i - 1'b1 : pm1_q;
+    top      = count_q == pm1_q;
     if (!run_i) begin
       count_d = '0;
       up_d    = 1'b1;
     end else begin
       count_d = up_q ? count_q + 1'b1 : count_q - 1'b1;
-      if (up_q && count_q == period_q - 1'b1) up_d = 1'b0;
+      if (up_q && top) up_d = 1'b0;
       if (!up_q && count_q == CntWidth'(1))   up_d = 1'b1;
     end
-    peak_d = run_i && up_q && count_q == period_q - 1'b1;   // next clock: count == period, down
+    peak_d = run_i && up_q && top;          // next clock: count == period, down
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -53,11 +58,13 @@ module svpwm_carrier #(
       count_q  <= '0;
       up_q     <= 1'b1;
       period_q <= CntWidth'(1);
+      pm1_q    <= '0;
       peak_q   <= 1'b0;
     end else begin
       count_q  <= count_d;
       up_q     <= up_d;
       period_q <= period_d;
+      pm1_q    <= pm1_d;
       peak_q   <= peak_d;
     end
   end
@@ -66,7 +73,8 @@ module svpwm_carrier #(
   assign up_o     = up_q;
   assign period_o = period_q;
   assign valley_o = run_i && up_q && count_q == '0;
-  assign peak_o   = run_i && peak_q;      // == run_i && !up_q && count_q == period_q
+  assign peak_o     = run_i && peak_q;    // == run_i && !up_q && count_q == period_q
+  assign pre_peak_o = peak_d;
 
 `ifdef FORMAL
   logic f_past_valid = 1'b0;
@@ -80,6 +88,7 @@ module svpwm_carrier #(
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && period_q != $past(period_q))
     assert (count_q == '0 && up_q);
   always_comb if (rst_ni) assert (peak_o == (run_i && !up_q && count_q == period_q));
+  always_comb if (rst_ni) assert (pm1_q == period_q - 1'b1);
   always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
 `endif
 

@@ -12,8 +12,8 @@
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= 24)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
-// Timing: inputs freq_i, m_i, period_i, dt_i, mp_i are sampled at the carrier peak (and continuously
-// while en_i is low). The compare values computed from them (12 + 4 clocks), the new period, dead
+// Timing: inputs m_i, period_i, dt_i, mp_i are sampled at the carrier peak, freq_i one clock before
+// it (and all continuously while en_i is low). The compare values computed from them (12 + 4 clocks), the new period, dead
 // time and minimum pulse all become active together at the next valley. Latency from an input to the
 // gates: 0.5 to 1.5 carrier periods (+1 clock to a pole, +1 + dead time to a turned-on gate).
 // After en_i rises the gates stay off for the first carrier period (no compare values yet); en_i low
@@ -164,7 +164,7 @@ module svpwm_core #(
 
   // ---- carrier -----------------------------------------------------------------------------------
   logic [CntWidth-1:0] count, period_act;
-  logic                up, valley, peak, load, sample;
+  logic                up, valley, peak, pre_peak, load, sample;
 
   logic [CntWidth-1:0] period_next_d, period_next_q;
   logic [DtWidth-1:0]  dt_next_d, dt_next_q, dt_d, dt_q, mp_next_d, mp_next_q, mp_d, mp_q;
@@ -180,8 +180,9 @@ module svpwm_core #(
     .up_o     (up),
     .period_o (period_act),
     .valley_o (valley),
-    .peak_o   (peak),
-    .load_o   (load)
+    .peak_o     (peak),
+    .pre_peak_o (pre_peak),
+    .load_o     (load)
   );
 
   assign sample = peak;   // inputs are sampled at the peak; idle cycles load them directly
@@ -194,7 +195,7 @@ module svpwm_core #(
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .run_i    (run),
-    .step_i   (sample ? freq_clamped : freq_q),
+    .step_i   (freq_q),             // switched at the peak: loaded on the clock before it
     .sector_o (acc_sector),
     .angle_o  (acc_angle)
   );
@@ -258,14 +259,16 @@ module svpwm_core #(
     sector_d       = sector_q;
     result_d       = result_q;
     valid_d        = valid_q;
+    if (!run || pre_peak) begin           // the frequency word is taken one clock before the peak, so
+      freq_d         = freq_clamped;       // it steps the angle from the peak on (off the adder path)
+      freq_clamp_d   = freq_over;
+    end
     if (!run || sample) begin             // sample point
-      freq_d         = freq_clamped;
       period_next_d  = period_clamped;
       dt_next_d      = dt_use_q;
       mp_next_d      = mp_use_q;
       m_clamp_d      = m_over;
       period_clamp_d = period_under;
-      freq_clamp_d   = freq_over;
     end
     if (snap_done) result_d = 1'b1;        // a result waits for the next valley
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration

@@ -29,12 +29,21 @@ module svpwm_minpulse #(
     initial $fatal(1, "svpwm_minpulse: need DtWidth + 2 <= CntWidth, got %0d / %0d", DtWidth, CntWidth);
   end
 
-  logic [1:0]            st_d, st_q;       // 0 idle, 1..3: phase a, b, c
+  // Each step compares the phase value c = cmp_q[0 +: CntWidth] against thresholds precomputed at the
+  // start (no subtraction in the loop), writes the result in at the top and rotates, so after three
+  // steps the phases are back in order:
+  //   c < thr                       -> 0 (2c < thr) or thr
+  //   P - c < hthr  <=>  c > P - hthr  -> P (2 (P - c) < hthr  <=>  2c > 2P - hthr) or P - hthr
+  logic [1:0]            st_d, st_q;       // steps done
   logic                  run_d, run_q, done_d, done_q;
   logic [3*CntWidth-1:0] cmp_d, cmp_q;
-  logic [CntWidth-1:0]   p_d, p_q, thr_d, thr_q, hthr, c, rest, c_new;
+  logic [CntWidth-1:0]   p_d, p_q, thr_d, thr_q, top_d, top_q, c, c_new, hthr;
+  logic [CntWidth:0]     twop_d, twop_q;   // 2P - hthr
+  logic [CntWidth-1:0]   p_hthr;           // P - hthr
 
-  assign hthr = (thr_q + 1'b1) >> 1;
+  assign hthr   = (CntWidth'(thr_i) + 1'b1) >> 1;
+  assign p_hthr = period_i - hthr;
+  assign c      = cmp_q[CntWidth-1:0];
 
   always_comb begin
     st_d   = st_q;
@@ -42,24 +51,26 @@ module svpwm_minpulse #(
     cmp_d  = cmp_q;
     p_d    = p_q;
     thr_d  = thr_q;
+    top_d  = top_q;
+    twop_d = twop_q;
     done_d = 1'b0;
-    c      = cmp_q[st_q*CntWidth +: CntWidth];
-    rest   = p_q - c;
     c_new  = c;
     if (c < thr_q) begin
       c_new = ({c, 1'b0} < {1'b0, thr_q}) ? '0 : thr_q;
-    end else if (rest < hthr) begin
-      c_new = ({rest, 1'b0} < {1'b0, hthr}) ? p_q : p_q - hthr;
+    end else if (c > top_q) begin
+      c_new = ({c, 1'b0} > twop_q) ? p_q : top_q;
     end
     if (start_i) begin
-      st_d  = 2'd0;
-      run_d = 1'b1;
-      cmp_d = cmp_i;
-      p_d   = period_i;
-      thr_d = CntWidth'(thr_i);
+      st_d   = 2'd0;
+      run_d  = 1'b1;
+      cmp_d  = cmp_i;
+      p_d    = period_i;
+      thr_d  = CntWidth'(thr_i);
+      top_d  = p_hthr;
+      twop_d = {period_i, 1'b0} - {1'b0, hthr};
     end else if (run_q) begin
-      cmp_d[st_q*CntWidth +: CntWidth] = c_new;
-      st_d = st_q + 2'd1;
+      cmp_d = {c_new, cmp_q[3*CntWidth-1:CntWidth]};   // rotate: the next phase comes to the bottom
+      st_d  = st_q + 2'd1;
       if (st_q == 2'd2) begin
         run_d  = 1'b0;
         done_d = 1'b1;
@@ -76,6 +87,8 @@ module svpwm_minpulse #(
       cmp_q  <= '0;
       p_q    <= '0;
       thr_q  <= '0;
+      top_q  <= '0;
+      twop_q <= '0;
     end else begin
       st_q   <= st_d;
       run_q  <= run_d;
@@ -83,6 +96,8 @@ module svpwm_minpulse #(
       cmp_q  <= cmp_d;
       p_q    <= p_d;
       thr_q  <= thr_d;
+      top_q  <= top_d;
+      twop_q <= twop_d;
     end
   end
 

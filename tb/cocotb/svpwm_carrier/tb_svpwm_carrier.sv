@@ -15,6 +15,7 @@ module tb_svpwm_carrier #(
   output logic [CntWidth-1:0] period_o,
   output logic                valley_o,
   output logic                peak_o,
+  output logic                pre_peak_o,
   output logic                load_o
 );
 
@@ -31,6 +32,7 @@ module tb_svpwm_carrier #(
     .period_o (period_o),
     .valley_o (valley_o),
     .peak_o   (peak_o),
+    .pre_peak_o (pre_peak_o),
     .load_o   (load_o)
   );
 

@@ -27,13 +27,14 @@ CLK_NS = 10
 
 
 def carrier_ref(inputs, count=0, up=1, period=1):
-    """Expected (count, up, period_o, valley, peak, load) of each clock for per-clock (run_i, period_i),
-    starting from the reset state (count 0, counting up, period 1)."""
+    """Expected (count, up, period_o, valley, peak, load, pre_peak) of each clock for per-clock (run_i,
+    period_i), starting from the reset state (count 0, counting up, period 1)."""
     for run, period_i in inputs:
         valley = int(run and up and count == 0)
         peak = int(run and not up and count == period)
         load = int(not run or (not up and count == 1))       # last clock of a carrier period, or idle
-        yield count, up, period, valley, peak, load
+        pre_peak = int(run and up and count == period - 1)    # the next clock is the peak
+        yield count, up, period, valley, peak, load, pre_peak
         if load:
             period = period_i                                   # active from the next clock (the valley)
         if not run:
@@ -55,7 +56,7 @@ class CarrierTB:
     def outputs(self):
         d = self.dut
         return (int(d.count_o.value), int(d.up_o.value), int(d.period_o.value), int(d.valley_o.value),
-                int(d.peak_o.value), int(d.load_o.value))
+                int(d.peak_o.value), int(d.load_o.value), int(d.pre_peak_o.value))
 
     async def reset(self, period_i=1):
         d = self.dut
@@ -79,7 +80,7 @@ class CarrierTB:
             await ReadOnly()
             got, exp = self.outputs(), next(exp_iter)
             assert got == exp, (f"{what} clock {i} (run {run}, period_i {period_i}): RTL (count, up, period_o, "
-                                f"valley, peak, load) = {got}, expected {exp}")
+                                f"valley, peak, load, pre_peak) = {got}, expected {exp}")
             trace.append(got)
             await FallingEdge(d.clk)
         return trace
@@ -105,10 +106,11 @@ async def turnaround(dut):
         for k, (start, counts) in enumerate(per):
             assert start == 2 * p * k
             assert counts == list(range(p)) + list(range(p, 0, -1)), f"P={p}: {counts}"
-        for i, (count, up, period, valley, peak, load) in enumerate(run[:6 * p]):
+        for i, (count, up, period, valley, peak, load, pre_peak) in enumerate(run[:6 * p]):
             ph = i % (2 * p)
             assert up == int(ph < p) and period == p
             assert valley == int(ph == 0) and peak == int(ph == p) and load == int(ph == 2 * p - 1), (p, i)
+            assert pre_peak == int(ph == p - 1), (p, i)
 
 
 @cocotb.test()

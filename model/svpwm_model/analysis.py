@@ -12,7 +12,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Sequence
 
+import numpy as np
+
+from . import fixed
 from .fixed import PHASE_WIDTH
+from .ideal import ideal_compare
 
 # Minas Table I, first half of each row (the second half mirrors it), bits (a, b, c) -> word {c,b,a}
 _TABLE_I_ROWS = (
@@ -167,3 +171,31 @@ def line_fundamental(pole_events, freq_word: int, t0: int, revolutions: int) -> 
     a = phase_switching(pole_events, 0)
     b = phase_switching(pole_events, 1)
     return abs(fourier(a, b, t0, t1, f))
+
+
+def duty_error(run) -> tuple[float, int]:
+    """Worst |C - C_ideal| in counts of the duty calculator over a run's modulated periods, and the
+    period where it occurs (a core.Run, from the model or checked equal to the RTL).
+
+    Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (run.theta[n]) and the
+    clamped m it used (run.m[n]). The values the core applies are these after the minimum-pulse rule,
+    which moves a value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that the
+    applied values are exactly the rule applied to the calculator's, within that bound, is asserted."""
+    n = np.arange(1, len(run.cmp))
+    if n.size == 0:
+        raise ValueError("no modulated period in the run")
+    th_int = np.array([run.theta[i] for i in n], dtype=np.int64)
+    sector = th_int >> fixed.PHASE_WIDTH
+    a16 = (th_int >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)) & 0xFFFF
+    m_w = np.array([run.m[i] for i in n], dtype=np.int64)
+    p_i = np.array([run.period[i] for i in n], dtype=np.int64)
+    raw = fixed.compare_values_np(sector, a16, m_w, p_i)
+    for k, i in enumerate(n):
+        thr = run.dt[i] + run.mp[i]
+        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in raw[k])
+        assert snapped == tuple(run.cmp[i]), f"period {i}: applied {run.cmp[i]} != snap(raw) {snapped}"
+        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(run.cmp[i], raw[k])), f"period {i}"
+    theta = th_int.astype(np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
+    err = np.max(np.abs(raw - ideal_compare(theta, m_w / fixed.M_ONE, p_i.astype(np.float64))), axis=-1)
+    k = int(np.argmax(err))
+    return float(err[k]), int(n[k])

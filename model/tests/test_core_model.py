@@ -160,3 +160,18 @@ def test_line_fundamental(m):
     r = CoreModel().run(u, [u] * n, n)
     amp = line_fundamental(r.pole_edges, u.freq, r.valley[1] + 1, 1)
     assert abs(amp / m - 1) < 1e-3, f"m={m}: line fundamental {amp:.6f}"
+
+
+def test_duty_error_against_ideal_and_min_pulse_rule():
+    """analysis.duty_error: the calculator stays within 0.53 counts of the ideal at m = 1 with a dead
+    time that makes the minimum-pulse rule act; a compare value off the rule is caught."""
+    from svpwm_model.analysis import duty_error
+    u = Inputs(FW(50.0), MW(1.0), 1536, 48)
+    r = CoreModel().run(u, [u] * 320, 320)
+    worst, at = duty_error(r)
+    assert 0.4 < worst <= 0.53 and 1 <= at < 320
+    c = list(r.cmp[100])
+    c[0] += 1
+    r.cmp[100] = tuple(c)
+    with pytest.raises(AssertionError, match="period 100"):
+        duty_error(r)

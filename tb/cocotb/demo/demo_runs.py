@@ -43,9 +43,8 @@ import numpy as np
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from svpwm_model import fixed
-from svpwm_model.analysis import check_legs, check_table_i, line_fundamental
+from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_model.ideal import ideal_compare
 from svpwm_tb import CoreTB
 
 F_CLK = fixed.F_CLK_DEFAULT
@@ -57,32 +56,6 @@ def default_periods(f_hz: float, period: int, revs: float = 1) -> int:
     if f_hz == 0:
         return 40
     return math.ceil(revs * F_CLK / (2 * period) / abs(f_hz)) + 2
-
-
-def ideal_worst(exp) -> tuple[float, int]:
-    """Worst |C - C_ideal| (counts) of the duty calculator over the modulated periods and the period
-    where it occurs.
-
-    Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (exp.theta[n]) and the
-    clamped/quantised m it used (exp.m[n]) -- as ideal_errors() in the core test, vectorised. The values
-    the core applies are these after the minimum-pulse rule (dead time + minimum pulse), which moves a
-    value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that is asserted here."""
-    n = np.arange(1, len(exp.cmp))
-    th_int = np.array([exp.theta[i] for i in n], dtype=np.int64)
-    sector = th_int >> fixed.PHASE_WIDTH
-    a16 = (th_int >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)) & 0xFFFF
-    m_w = np.array([exp.m[i] for i in n], dtype=np.int64)
-    p_i = np.array([exp.period[i] for i in n], dtype=np.int64)
-    raw = fixed.compare_values_np(sector, a16, m_w, p_i)
-    for k, i in enumerate(n):
-        thr = exp.dt[i] + exp.mp[i]
-        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in raw[k])
-        assert snapped == tuple(exp.cmp[i]), f"period {i}: applied {exp.cmp[i]} != snap(raw) {snapped}"
-        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(exp.cmp[i], raw[k]))
-    theta = th_int.astype(np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
-    err = np.max(np.abs(raw - ideal_compare(theta, m_w / fixed.M_ONE, p_i.astype(np.float64))), axis=-1)
-    k = int(np.argmax(err))
-    return float(err[k]), int(n[k])
 
 
 def write_vcd(path: Path, pole_edges, gate_edges, end_cycle: int, comment: str) -> None:
@@ -193,7 +166,7 @@ async def run_point(dut, pt: dict) -> None:
         fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
 
     # ---- duty error vs the ideal SVPWM -------------------------------------------------------------
-    worst, at = ideal_worst(exp)
+    worst, at = duty_error(exp)
     res["worst_abs_c_minus_ideal_counts"] = worst
     res["worst_at_period"] = at
     if worst > 1.0:

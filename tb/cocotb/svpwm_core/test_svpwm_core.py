@@ -14,13 +14,11 @@ import os
 from pathlib import Path
 
 import cocotb
-import numpy as np
 
 from simrun import REPO, run_sim
 from svpwm_model import fixed
-from svpwm_model.analysis import check_legs, check_table_i, line_fundamental
+from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_model.ideal import ideal_compare
 from svpwm_tb import CoreTB
 
 F_CLK = fixed.F_CLK_DEFAULT
@@ -39,24 +37,6 @@ def const(u: Inputs):
     return lambda n: u
 
 
-def ideal_errors(exp) -> float:
-    """Worst |C - C_ideal| of the duty calculator over the run, ideal at the exact sampled angle (full
-    accumulator). The compare values the core applies are these after the minimum-pulse rule; assert
-    that rule's deviation stays within its bound (ceil((dt + mp) / 2) counts, by design)."""
-    worst = 0.0
-    for n in range(1, len(exp.cmp)):
-        sector = exp.theta[n] >> fixed.PHASE_WIDTH
-        a16 = (exp.theta[n] >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)) & 0xFFFF
-        raw = fixed.compare_values(sector, a16, exp.m[n], exp.period[n])
-        thr = exp.dt[n] + exp.mp[n]
-        assert exp.cmp[n] == tuple(fixed.snap_min_pulse(c, exp.period[n], thr) for c in raw)
-        assert all(abs(a - b) <= (thr + 1) // 2 for a, b in zip(exp.cmp[n], raw))
-        theta = exp.theta[n] / (1 << fixed.PHASE_WIDTH) * math.pi / 3
-        ideal = ideal_compare(np.array(theta), exp.m[n] / fixed.M_ONE, exp.period[n])
-        worst = max(worst, float(np.max(np.abs(np.asarray(raw) - ideal))))
-    return worst
-
-
 async def check_run(tb: CoreTB, idle: Inputs, inputs, n: int, stop=None, dt_of=None):
     rtl, exp = await tb.run(idle, inputs, n, stop)
     tb.compare(rtl, exp)
@@ -72,7 +52,7 @@ async def check_run(tb: CoreTB, idle: Inputs, inputs, n: int, stop=None, dt_of=N
 
     legs = check_legs(rtl.gate_edges, dt_of or dt_at, forced_off=[exp.end - 1] if stop is not None else [])
     assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
-    err = ideal_errors(exp)
+    err, _ = duty_error(exp)
     assert err <= 1.0, f"duty error {err:.3f} counts > 1 count vs the ideal SVPWM"
     tb.dut._log.info("%d periods, %d edges, Table I ok (%d with skipped states), worst |C - ideal| = %.3f",
                      len(rtl.cmp), len(rtl.gate_edges), seq.with_skips, err)

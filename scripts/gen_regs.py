@@ -174,6 +174,7 @@ def render_py(regs: list[Reg], size: int) -> str:
          "@dataclass(frozen=True)", "class Field:", "    name: str", "    lsb: int", "    width: int",
          "    kind: str", "    reset: int", "    signed: bool = False",
          "    rst_param: str | None = None  # RTL reset value is this wrapper parameter (reset = default)",
+         "    port: str | None = None  # svpwm_regs port of the field (None: constant)",
          "", "    @property", "    def mask(self) -> int:", "        return ((1 << self.width) - 1) << self.lsb",
          "", "    @property", "    def writable(self) -> bool:", '        return self.kind in ("rw", "w1s", "pulse")',
          "", "    @property", "    def readable_back(self) -> bool:",
@@ -200,6 +201,7 @@ def render_py(regs: list[Reg], size: int) -> str:
         L.append(f'    Register("{r.name}", 0x{r.addr:02X}, (')
         for f in r.fields:
             extra = (", signed=True" if f.signed else "") + (f', rst_param="{f.rst_param}"' if f.rst_param else "")
+            extra += f', port="{_port(r, f)}"' if f.kind != "const" else ""
             L.append(f'        Field("{f.name}", {f.lsb}, {f.width}, "{f.kind}", 0x{f.reset:X}{extra}),')
         L.append("    )),")
     L += [")", "", "BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}",

@@ -22,6 +22,7 @@ class Field:
     reset: int
     signed: bool = False
     rst_param: str | None = None  # RTL reset value is this wrapper parameter (reset = default)
+    port: str | None = None  # svpwm_regs port of the field (None: constant)
 
     @property
     def mask(self) -> int:
@@ -89,80 +90,80 @@ REGISTERS: tuple[Register, ...] = (
         Field("phase_width", 24, 8, "const", 0x22),
     )),
     Register("CTRL", 0x0C, (
-        Field("en", 0, 1, "rw", 0x0),
-        Field("sync_en", 1, 1, "rw", 0x0),
-        Field("trip_cbc", 2, 1, "rw", 0x0),
-        Field("safe_lo", 3, 1, "rw", 0x0),
-        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol"),
-        Field("lock", 6, 1, "w1s", 0x0),
-        Field("fault_clear", 7, 1, "pulse", 0x0),
-        Field("mode", 8, 3, "rw", 0x0),
-        Field("upd", 12, 2, "rw", 0x0),
-        Field("dpwm", 16, 2, "rw", 0x0),
-        Field("adc_trig", 20, 2, "rw", 0x0),
+        Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o"),
+        Field("sync_en", 1, 1, "rw", 0x0, port="ctrl_sync_en_o"),
+        Field("trip_cbc", 2, 1, "rw", 0x0, port="ctrl_trip_cbc_o"),
+        Field("safe_lo", 3, 1, "rw", 0x0, port="ctrl_safe_lo_o"),
+        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol", port="ctrl_pol_o"),
+        Field("lock", 6, 1, "w1s", 0x0, port="ctrl_lock_o"),
+        Field("fault_clear", 7, 1, "pulse", 0x0, port="ctrl_fault_clear_o"),
+        Field("mode", 8, 3, "rw", 0x0, port="ctrl_mode_o"),
+        Field("upd", 12, 2, "rw", 0x0, port="ctrl_upd_o"),
+        Field("dpwm", 16, 2, "rw", 0x0, port="ctrl_dpwm_o"),
+        Field("adc_trig", 20, 2, "rw", 0x0, port="ctrl_adc_trig_o"),
     )),
     Register("FREQ", 0x10, (
-        Field("freq", 0, 24, "rw", 0x0, signed=True),
+        Field("freq", 0, 24, "rw", 0x0, signed=True, port="freq_o"),
     )),
     Register("M", 0x14, (
-        Field("m", 0, 16, "rw", 0x0),
+        Field("m", 0, 16, "rw", 0x0, port="m_o"),
     )),
     Register("THETA", 0x18, (
-        Field("theta", 0, 16, "rw", 0x0),
+        Field("theta", 0, 16, "rw", 0x0, port="theta_o"),
     )),
     Register("V1", 0x1C, (
-        Field("v1", 0, 16, "rw", 0x0, signed=True),
+        Field("v1", 0, 16, "rw", 0x0, signed=True, port="v1_o"),
     )),
     Register("V2", 0x20, (
-        Field("v2", 0, 16, "rw", 0x0, signed=True),
+        Field("v2", 0, 16, "rw", 0x0, signed=True, port="v2_o"),
     )),
     Register("VF_BOOST", 0x24, (
-        Field("vf_boost", 0, 16, "rw", 0x0),
+        Field("vf_boost", 0, 16, "rw", 0x0, port="vf_boost_o"),
     )),
     Register("VF_SLOPE", 0x28, (
-        Field("vf_slope", 0, 16, "rw", 0x0),
+        Field("vf_slope", 0, 16, "rw", 0x0, port="vf_slope_o"),
     )),
     Register("VF_MMAX", 0x2C, (
-        Field("vf_mmax", 0, 16, "rw", 0x0),
+        Field("vf_mmax", 0, 16, "rw", 0x0, port="vf_mmax_o"),
     )),
     Register("PERIOD", 0x30, (
-        Field("period", 0, 16, "rw", 0x600),
+        Field("period", 0, 16, "rw", 0x600, port="period_o"),
     )),
     Register("DT", 0x34, (
-        Field("dt", 0, 10, "rw", 0x0),
+        Field("dt", 0, 10, "rw", 0x0, port="dt_o"),
     )),
     Register("MP", 0x38, (
-        Field("mp", 0, 10, "rw", 0x0),
+        Field("mp", 0, 10, "rw", 0x0, port="mp_o"),
     )),
     Register("PRESC", 0x3C, (
-        Field("presc", 0, 8, "rw", 0x0),
+        Field("presc", 0, 8, "rw", 0x0, port="presc_o"),
     )),
     Register("STATUS", 0x40, (
-        Field("running", 0, 1, "status", 0x0),
-        Field("sat", 1, 1, "status", 0x0),
-        Field("cfg_err", 2, 1, "status", 0x0),
-        Field("period_clamp", 3, 1, "status", 0x0),
-        Field("freq_clamp", 4, 1, "status", 0x0),
-        Field("fault", 5, 1, "status", 0x0),
-        Field("tripped", 6, 1, "status", 0x0),
-        Field("locked", 7, 1, "status", 0x0),
-        Field("sector", 8, 3, "status", 0x0),
+        Field("running", 0, 1, "status", 0x0, port="status_running_i"),
+        Field("sat", 1, 1, "status", 0x0, port="status_sat_i"),
+        Field("cfg_err", 2, 1, "status", 0x0, port="status_cfg_err_i"),
+        Field("period_clamp", 3, 1, "status", 0x0, port="status_period_clamp_i"),
+        Field("freq_clamp", 4, 1, "status", 0x0, port="status_freq_clamp_i"),
+        Field("fault", 5, 1, "status", 0x0, port="status_fault_i"),
+        Field("tripped", 6, 1, "status", 0x0, port="status_tripped_i"),
+        Field("locked", 7, 1, "status", 0x0, port="status_locked_i"),
+        Field("sector", 8, 3, "status", 0x0, port="status_sector_i"),
     )),
     Register("CARRIER", 0x44, (
-        Field("count", 0, 16, "status", 0x0),
-        Field("up", 16, 1, "status", 0x0),
+        Field("count", 0, 16, "status", 0x0, port="carrier_count_i"),
+        Field("up", 16, 1, "status", 0x0, port="carrier_up_i"),
     )),
     Register("PERIOD_ACT", 0x48, (
-        Field("period", 0, 16, "status", 0x0),
+        Field("period", 0, 16, "status", 0x0, port="period_act_i"),
     )),
     Register("CMP_A", 0x4C, (
-        Field("cmp", 0, 16, "status", 0x0),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_a_i"),
     )),
     Register("CMP_B", 0x50, (
-        Field("cmp", 0, 16, "status", 0x0),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_b_i"),
     )),
     Register("CMP_C", 0x54, (
-        Field("cmp", 0, 16, "status", 0x0),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_c_i"),
     )),
 )
 

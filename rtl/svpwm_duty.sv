@@ -17,7 +17,7 @@
 // One 16x16 multiplier (one iCE40 DSP) and the single-port ROM are time-shared by a fixed schedule.
 // Parameters: CntWidth - period / compare width (8..16).
 // Latency: DutyLatency = 33 clocks from start_i to done_o, the same in every mode; outputs hold until the
-// next done_o. Restrictions: start_i is ignored while busy_o.
+// next done_o. Restrictions: start_i is ignored while busy_o (abort_i first to restart).
 `default_nettype none
 
 module svpwm_duty #(
@@ -26,6 +26,7 @@ module svpwm_duty #(
   input  logic                  clk_i,        // core clock
   input  logic                  rst_ni,       // asynchronous reset, active low
   input  logic                  start_i,      // sample the inputs below and start
+  input  logic                  abort_i,      // stop a computation (the core stopped): back to idle
   input  logic [2:0]            mode_i,       // input mode (above)
   input  logic [2:0]            sector_i,     // phase accumulator: sector 0..5 (FREQ, VF)
   input  logic [15:0]           angle_i,      // phase accumulator: theta' / 60 deg, UQ0.16 (FREQ, VF)
@@ -429,6 +430,10 @@ module svpwm_duty #(
       if (start_i) st_d = 6'd1;
     end else begin
       st_d = (st_q == 6'(LastSt)) ? 6'd0 : st_q + 6'd1;
+    end
+    if (abort_i) begin
+      st_d   = 6'd0;
+      done_d = 1'b0;
     end
   end
 

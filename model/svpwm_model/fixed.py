@@ -27,7 +27,7 @@ PHASE_WIDTH = 34          # fraction bits of the in-sector angle accumulator
 FREQ_WIDTH = 24           # signed frequency word
 CNT_WIDTH = 16            # carrier / period / compare width
 DT_WIDTH = 10             # dead-time counter width (clocks)
-MIN_PERIOD = 32           # smallest accepted half period (clocks); smaller inputs are clamped
+MIN_PERIOD = 48           # smallest accepted half period (clocks); smaller inputs are clamped
 ROM_BITS = 8              # sine ROM: 2**ROM_BITS intervals over 0..60 deg (257 points)
 INTERP_BITS = 8           # linear-interpolation fraction bits
 ANGLE_BITS = ROM_BITS + INTERP_BITS   # angle bits the duty calculator uses (top of the accumulator)
@@ -35,7 +35,9 @@ SIN_BITS = 16             # UQ0.16 sine samples
 M_FRAC = 15               # m is UQ1.15
 M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
-DUTY_LATENCY = 12         # clocks from the duty calculator's start strobe to its done strobe
+DUTY_LATENCY = 33         # clocks from the duty calculator's start strobe to its done strobe
+MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
+SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (38)
 V_FRAC = 14               # v_alpha, v_beta, v_d, v_q are signed Q2.14
 V_ONE = 1 << V_FRAC
 D_ONE = 1 << SIN_BITS     # dwell time of a whole period
@@ -72,13 +74,6 @@ def sine_table() -> list[int]:
 
 
 _ROM = sine_table()
-
-
-def clamp_m(m: int) -> tuple[int, bool]:
-    """Clamp a UQ1.15 modulation index to [0, 1.0]; returns (value, clamped)."""
-    if m < 0:
-        raise ValueError("m is unsigned")
-    return (M_ONE, True) if m > M_ONE else (m, False)
 
 
 FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)

@@ -9,15 +9,24 @@
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
 //   FreqWidth  - signed frequency word width (<= PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
-//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= 24)
+//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
-// Timing: inputs m_i, period_i, dt_i, mp_i are sampled at the carrier peak, freq_i one clock before
-// it (and all continuously while en_i is low). The compare values computed from them (12 + 4 clocks), the new period, dead
-// time and minimum pulse all become active together at the next valley. Latency from an input to the
-// gates: 0.5 to 1.5 carrier periods (+1 clock to a pole, +1 + dead time to a turned-on gate).
-// After en_i rises the gates stay off for the first carrier period (no compare values yet); en_i low
-// turns all gates off on the next clock. Reset: all gates off (at the pins, polarity GatePol).
+// Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
+// POLAR (theta_i + m_i), AB (v1_i, v2_i = v_alpha, v_beta), DQ (v1_i, v2_i = v_d, v_q + theta_i); a vector
+// beyond the hexagon is clamped to its boundary keeping its angle (sat_o); dpwm_i places the zero vectors
+// (SVPWM or bus-clamped DPWM). Invalid mode / update codes: zero vector / valley update + cfg_err_o.
+// Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
+// presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
+// vf_*, dpwm_i, mode_i) is sampled SampleLead = 38 clocks before it (compute 33 + minimum pulse 4 + load
+// 1), in the clock before count == 38 (down) / P - 38 (up). period_i, dt_i, mp_i, upd_i, presc_i are
+// sampled there before every valley and take effect at it; a changed period, dead time or minimum
+// pulse forces an update at that valley. Latency from a reference to the gates: at most a half carrier
+// period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
+// time to a turned-on gate. freq_i steps the angle from the sample on. After en_i rises the gates stay
+// off until the first update; en_i low turns all gates off on the next clock and aborts a computation.
+// Reset: all gates off (at the pins, polarity GatePol). sync_en_i: the carrier starts only with a
+// sync_i pulse (another core's sync_o, same clock), so several cores run phase-aligned.
 // Safety (README "Safety"): fault_i forces the high sides (and, unless braking, the low sides) off
 // combinationally, latched or cycle-by-cycle; a shoot-through interlock is the last stage; the dead
 // time, minimum pulse, polarity and safe state are locked by lock_i until reset; out-of-range inputs
@@ -29,18 +38,31 @@ module svpwm_core #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 32,
+  parameter int MinPeriod  = 48,
   parameter int FreqMax    = (1 << (FreqWidth - 1)) - 1,
   parameter logic [1:0] GatePol = 2'b00
 ) (
   input  logic                        clk_i,           // core clock (default 48 MHz)
   input  logic                        rst_ni,          // asynchronous reset, active low
   input  logic                        en_i,            // run: 1 modulate, 0 all gates off
+  input  logic [2:0]                  mode_i,          // 0 FREQ 1 VF 2 POLAR 3 AB 4 DQ (others: error)
   input  logic signed [FreqWidth-1:0] freq_i,          // frequency word, signed (negative = reverse)
-  input  logic [15:0]                 m_i,             // modulation index UQ1.15, 0x8000 = 1.0
+  input  logic [15:0]                 m_i,             // magnitude UQ1.15, 0x8000 = 1.0 (FREQ, POLAR)
+  input  logic [15:0]                 theta_i,         // electrical angle, 2^16 = 360 deg (POLAR, DQ)
+  input  logic signed [15:0]          v1_i,            // v_alpha / v_d, Q2.14, 0x4000 = 1.0 (AB, DQ)
+  input  logic signed [15:0]          v2_i,            // v_beta / v_q, Q2.14 (AB, DQ)
+  input  logic [15:0]                 vf_boost_i,      // V/f: m at zero frequency, UQ1.15
+  input  logic [15:0]                 vf_slope_i,      // V/f: UQ8.8 m-LSBs per 2^(FreqWidth-17) freq LSBs
+  input  logic [15:0]                 vf_mmax_i,       // V/f: largest m, UQ1.15
+  input  logic [1:0]                  dpwm_i,          // 0 SVPWM 1 DPWMMIN 2 DPWMMAX 3 DPWM1 (60 deg)
+  input  logic [1:0]                  upd_i,           // update at 0 valley 1 peak 2 both (3: error)
+  input  logic [7:0]                  presc_i,         // new values every presc_i + 1 opportunities
   input  logic [CntWidth-1:0]         period_i,        // half carrier period in clocks
   input  logic [DtWidth-1:0]          dt_i,            // dead time in clocks (locked by lock_i)
   input  logic [DtWidth-1:0]          mp_i,            // minimum gate pulse in clocks (locked)
+  input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
+  input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
+  input  logic                        sync_i,          // another core's sync_o (same clock)
   input  logic                        fault_i,         // trip input, asynchronous, active high
   input  logic                        fault_clear_i,   // clears a latched trip once fault_i is low
   input  logic                        trip_cbc_i,      // trip mode: 0 latched, 1 cycle-by-cycle (locked)
@@ -54,12 +76,16 @@ module svpwm_core #(
   output logic [CntWidth-1:0]         carrier_o,       // carrier value 0..P
   output logic                        carrier_up_o,    // carrier counting up
   output logic                        valley_o,        // pulse: first clock of a carrier period
-  output logic                        peak_o,          // pulse: carrier peak (inputs sampled here)
-  output logic [2:0]                  sector_o,        // sector (0..5 = seeds' 1..6) of the active period
-  output logic [3*CntWidth-1:0]       cmp_o,           // {C_c, C_b, C_a} of the active period
+  output logic                        peak_o,          // pulse: carrier peak
+  output logic                        update_o,        // pulse: new compare values active from this clock
+  output logic                        adc_trig_o,      // pulse: ADC trigger (valley and/or peak)
+  output logic                        sync_o,          // pulse: valley, for other cores' sync_i
+  output logic [2:0]                  sector_o,        // sector (0..5 = seeds' 1..6) of the active values
+  output logic [3*CntWidth-1:0]       cmp_o,           // {C_c, C_b, C_a} active now
   output logic [CntWidth-1:0]         period_o,        // active half period
   output logic                        running_o,       // compare values valid, gates modulating
-  output logic                        m_clamp_o,       // m_i > 1.0 was clamped at the last sample
+  output logic                        sat_o,           // active values: reference clamped to the hexagon
+  output logic                        cfg_err_o,       // invalid mode (active values) or upd_i code
   output logic                        period_clamp_o,  // period_i too short was lengthened at the last sample
   output logic                        freq_clamp_o,    // |freq_i| > FreqMax was clamped at the last sample
   output logic                        fault_o,         // fault_i, synchronised
@@ -67,13 +93,16 @@ module svpwm_core #(
   output logic                        locked_o         // configuration locked until reset
 );
 
+  // clocks from an input sample (inputs taken in the clock before) to the update point
 `ifdef FORMAL
-  localparam int MinPeriodFloor = 4;    // formal/core.sby cuts the compute pipeline: no latency to cover
+  localparam int SampleLead     = 2;    // formal/core.sby cuts the compute pipeline: no latency to cover
+  localparam int MinPeriodFloor = 4;
 `else
-  localparam int MinPeriodFloor = 24;   // duty calculator 12 + minimum pulse 4 + load margin
+  localparam int SampleLead     = 38;   // duty calculator 33 + minimum pulse 4 + load 1
+  localparam int MinPeriodFloor = SampleLead + 4;
 `endif
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
-    initial $fatal(1, "svpwm_core: MinPeriod must be >= 24 (compute latency 17 + margin), got %0d",
+    initial $fatal(1, "svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d", MinPeriodFloor,
                    MinPeriod);
   end
   if (DtWidth + 2 > CntWidth) begin : gen_bad_dt_width
@@ -87,15 +116,21 @@ module svpwm_core #(
   // ---- run: en_i, but not in the first three clocks after reset, so that the configuration
   // registers, the lowest legal period and then the idle loads (period clamped for the dead time,
   // frequency) all happen before the carrier starts -----------------------------------------------
+  // frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse --------
   logic [2:0] armed_q;
-  logic       run;
+  logic       run, started_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) armed_q <= '0;
-    else         armed_q <= {armed_q[1:0], 1'b1};
+    if (!rst_ni) begin
+      armed_q   <= '0;
+      started_q <= 1'b0;
+    end else begin
+      armed_q   <= {armed_q[1:0], 1'b1};
+      started_q <= run;
+    end
   end
 
-  assign run = en_i && armed_q[2];
+  assign run = en_i && armed_q[2] && (started_q || !sync_en_i || sync_i);
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -124,16 +159,11 @@ module svpwm_core #(
   end
 
   // ---- input clamps (bad input gets the nearest legal value and a flag) --------------------------
-  localparam logic [15:0] MOne = 16'h8000;
-
-  logic [15:0]                 m_clamped;
   logic [CntWidth-1:0]         period_clamped, period_low;
   logic [DtWidth:0]            thr;             // dead time + minimum pulse
   logic signed [FreqWidth-1:0] freq_clamped;
-  logic                        m_over, period_under, freq_over;
+  logic                        period_under, freq_over;
 
-  assign m_over         = m_i > MOne;
-  assign m_clamped      = m_over ? MOne : m_i;
   assign thr            = {1'b0, dt_cfg_q} + {1'b0, mp_cfg_q};
   assign period_low     = (CntWidth'({thr, 1'b0}) > CntWidth'(MinPeriod)) ? CntWidth'({thr, 1'b0})
                                                                         : CntWidth'(MinPeriod);
@@ -163,29 +193,98 @@ module svpwm_core #(
                                                                      : FreqWidth'(FreqMax);
 
   // ---- carrier -----------------------------------------------------------------------------------
-  logic [CntWidth-1:0] count, period_act;
-  logic                up, valley, peak, pre_peak, load, sample;
+  logic [CntWidth-1:0] count, period_act, period_load;
+  logic                up, valley, peak, pre_peak, load;
 
   logic [CntWidth-1:0] period_next_d, period_next_q;
   logic [DtWidth-1:0]  dt_next_d, dt_next_q, dt_d, dt_q, mp_next_d, mp_next_q, mp_d, mp_q;
   logic signed [FreqWidth-1:0] freq_d, freq_q;
-  logic                m_clamp_d, m_clamp_q, period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
+  logic                period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
+
+  assign period_load = run ? period_next_q : period_clamped;
 
   svpwm_carrier #(.CntWidth(CntWidth)) u_carrier (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .run_i    (run),
-    .period_i (run ? period_next_q : period_clamped),
-    .count_o  (count),
-    .up_o     (up),
-    .period_o (period_act),
-    .valley_o (valley),
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .run_i      (run),
+    .period_i   (period_load),
+    .count_o    (count),
+    .up_o       (up),
+    .period_o   (period_act),
+    .valley_o   (valley),
     .peak_o     (peak),
     .pre_peak_o (pre_peak),
     .load_o     (load)
   );
 
-  assign sample = peak;   // inputs are sampled at the peak; idle cycles load them directly
+  // ---- sample points: SampleLead clocks before each valley (count == SampleLead counting down) and
+  // each peak (count == P - SampleLead counting up); the inputs are taken in the clock before (vps, pps),
+  // from registered compares one clock earlier still (count == SampleLead + 2 / P - SampleLead - 2) ----
+  logic [CntWidth-1:0] pl2_d, pl2_q;           // P - SampleLead - 2 of the active period
+  logic                vps_d, vps_q, pps_d, pps_q, vps, pps;
+
+  assign pl2_d = load ? period_load - CntWidth'(SampleLead + 2) : pl2_q;
+  assign vps_d = run && !up && count == CntWidth'(SampleLead + 2);
+  assign pps_d = run && up && count == pl2_q;
+  assign vps   = run && vps_q;
+  assign pps   = run && pps_q;
+
+  // ---- update control: which opportunities update (upd, prescaler), forced updates --------------
+  localparam logic [1:0] UpdValley = 2'd0, UpdPeak = 2'd1;   // 2'd2: both
+
+  logic [1:0] upd_d, upd_q;
+  logic       upd_err_d, upd_err_q;
+  logic [7:0] presc_d, presc_q, cnt_d, cnt_q;
+  logic       opp_v, opp_p, forced, event_now;
+
+  assign opp_v     = vps && upd_q != UpdPeak;
+  assign opp_p     = pps && upd_q != UpdValley;
+  assign forced    = vps && (period_clamped != period_act || dt_use_q != dt_q || mp_use_q != mp_q);
+  assign event_now = ((opp_v || opp_p) && cnt_q == '0) || forced;
+
+  always_comb begin
+    upd_d     = upd_q;
+    upd_err_d = upd_err_q;
+    presc_d   = presc_q;
+    cnt_d     = cnt_q;
+    if (opp_v || opp_p) cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
+    if (!run || vps) begin                 // update mode and prescaler: before each valley (or idle)
+      upd_d     = (upd_i == 2'd3) ? UpdValley : upd_i;
+      upd_err_d = upd_i == 2'd3;
+      presc_d   = presc_i;
+    end
+    if (!run) cnt_d = '0;
+  end
+
+  // ---- reference registers: taken at an update's sample ---------------------------------------
+  logic [2:0]         mode_q;
+  logic [15:0]        m_q, theta_q, vf_boost_q, vf_slope_q, vf_mmax_q;
+  logic signed [15:0] v1_q, v2_q;
+  logic [1:0]         dpwm_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      mode_q     <= '0;
+      m_q        <= '0;
+      theta_q    <= '0;
+      v1_q       <= '0;
+      v2_q       <= '0;
+      vf_boost_q <= '0;
+      vf_slope_q <= '0;
+      vf_mmax_q  <= '0;
+      dpwm_q     <= '0;
+    end else if (event_now) begin
+      mode_q     <= mode_i;
+      m_q        <= m_i;
+      theta_q    <= theta_i;
+      v1_q       <= v1_i;
+      v2_q       <= v2_i;
+      vf_boost_q <= vf_boost_i;
+      vf_slope_q <= vf_slope_i;
+      vf_mmax_q  <= vf_mmax_i;
+      dpwm_q     <= dpwm_i;
+    end
+  end
 
   // ---- phase accumulator -------------------------------------------------------------------------
   logic [2:0]            acc_sector;
@@ -195,126 +294,195 @@ module svpwm_core #(
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .run_i    (run),
-    .step_i   (freq_q),             // switched at the peak: loaded on the clock before it
+    .step_i   (freq_q),             // the sampled frequency word steps the angle from the sample on
     .sector_o (acc_sector),
     .angle_o  (acc_angle)
   );
 
-  // ---- duty calculator ---------------------------------------------------------------------------
+  // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow)
+  logic [FreqWidth-1:0] fmag;
+  logic [15:0]          fabs;
+
+  assign fmag = freq_q[FreqWidth-1] ? FreqWidth'(-freq_q) : FreqWidth'(freq_q);
+  if (FreqWidth >= 17) begin : gen_fabs_shr
+    assign fabs = fmag[FreqWidth-2 -: 16];
+  end else begin : gen_fabs_shl
+    assign fabs = 16'({fmag[FreqWidth-2:0], (17 - FreqWidth)'(0)});
+  end
+
+  // ---- duty calculator: started in the clock after the sample (event_q) --------------------------
+  logic                  start_q, ev_valley_q, pending_d, pending_q;
   logic [2:0]            duty_sector;
   logic [3*CntWidth-1:0] duty_cmp;
-  logic                  duty_done, duty_busy;
+  logic                  duty_done, duty_busy, duty_sat, duty_err;
+  logic [CntWidth-1:0]   calc_period_d, calc_period_q;
+  logic [DtWidth:0]      calc_thr_d, calc_thr_q;
 
   svpwm_duty #(.CntWidth(CntWidth)) u_duty (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .start_i  (sample),
-    .sector_i (acc_sector),
-    .angle_i  (acc_angle[PhaseWidth-1 -: 16]),
-    .m_i      (m_clamped),
-    .period_i (period_clamped),
-    .busy_o   (duty_busy),
-    .done_o   (duty_done),
-    .sector_o (duty_sector),
-    .cmp_o    (duty_cmp)
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .start_i    (start_q && run),
+    .abort_i    (!run),
+    .mode_i     (mode_q),
+    .sector_i   (acc_sector),
+    .angle_i    (acc_angle[PhaseWidth-1 -: 16]),
+    .theta_i    (theta_q),
+    .m_i        (m_q),
+    .fabs_i     (fabs),
+    .v1_i       (v1_q),
+    .v2_i       (v2_q),
+    .vf_boost_i (vf_boost_q),
+    .vf_slope_i (vf_slope_q),
+    .vf_mmax_i  (vf_mmax_q),
+    .dpwm_i     (dpwm_q),
+    .period_i   (calc_period_d),
+    .busy_o     (duty_busy),
+    .done_o     (duty_done),
+    .sector_o   (duty_sector),
+    .cmp_o      (duty_cmp),
+    .sat_o      (duty_sat),
+    .err_o      (duty_err)
   );
+
+  // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
+  // dead time it comes with; a peak update for the active period and dead time
+  always_comb begin
+    calc_period_d = calc_period_q;
+    calc_thr_d    = calc_thr_q;
+    if (start_q) begin
+      calc_period_d = ev_valley_q ? period_next_q : period_act;
+      calc_thr_d    = ev_valley_q ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : {1'b0, dt_q} + {1'b0, mp_q};
+    end
+  end
 
   // ---- minimum pulse -----------------------------------------------------------------------------
   logic [3*CntWidth-1:0] snap_cmp;
   logic                  snap_done;
-  logic [2:0]            snap_sector_q;
 
   svpwm_minpulse #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_minpulse (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .start_i  (duty_done),
     .cmp_i    (duty_cmp),
-    .period_i (period_next_q),
-    .thr_i    ({1'b0, dt_next_q} + {1'b0, mp_next_q}),
+    .period_i (calc_period_q),
+    .thr_i    (calc_thr_q),
     .done_o   (snap_done),
     .cmp_o    (snap_cmp)
   );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni)        snap_sector_q <= '0;
-    else if (duty_done) snap_sector_q <= duty_sector;
-  end
-
   // ---- shadow and active registers ---------------------------------------------------------------
   logic [3*CntWidth-1:0] cmp_d, cmp_q;
   logic [2:0]            sector_d, sector_q;
-  logic                  result_d, result_q, valid_d, valid_q;
+  logic                  valid_d, valid_q, sat_d, sat_q, err_d, err_q, update_d, update_q, take;
+
+  // new compare values are taken at a load strobe (the clock before a valley or a peak) exactly when
+  // the computation of an update finishes (SampleLead is the pipeline length)
+  assign take = run && pending_q && snap_done && (load || pre_peak);
 
   always_comb begin
     freq_d         = freq_q;
     period_next_d  = period_next_q;
     dt_next_d      = dt_next_q;
     mp_next_d      = mp_next_q;
-    m_clamp_d      = m_clamp_q;
     period_clamp_d = period_clamp_q;
     freq_clamp_d   = freq_clamp_q;
     dt_d           = dt_q;
     mp_d           = mp_q;
     cmp_d          = cmp_q;
     sector_d       = sector_q;
-    result_d       = result_q;
     valid_d        = valid_q;
-    if (!run || pre_peak) begin           // the frequency word is taken one clock before the peak, so
-      freq_d         = freq_clamped;       // it steps the angle from the peak on (off the adder path)
+    sat_d          = sat_q;
+    err_d          = err_q;
+    update_d       = 1'b0;
+    pending_d      = pending_q;
+    if (!run || event_now) begin          // the frequency word steps the angle from the sample on
+      freq_d         = freq_clamped;
       freq_clamp_d   = freq_over;
     end
-    if (!run || sample) begin             // sample point
+    if (!run || vps) begin                // period, dead time, minimum pulse: before every valley
       period_next_d  = period_clamped;
       dt_next_d      = dt_use_q;
       mp_next_d      = mp_use_q;
-      m_clamp_d      = m_over;
       period_clamp_d = period_under;
     end
-    if (snap_done) result_d = 1'b1;        // a result waits for the next valley
+    if (start_q) pending_d = 1'b1;
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration
-      dt_d     = dt_use_q;
-      mp_d     = mp_use_q;
-      result_d = 1'b0;
-      valid_d  = 1'b0;
-    end else if (load) begin               // load point: all three phases, period, dt and mp together
-      dt_d     = dt_next_q;
-      mp_d     = mp_next_q;
-      cmp_d    = snap_cmp;
-      sector_d = snap_sector_q;
-      valid_d  = result_q;
-      result_d = 1'b0;
+      dt_d      = dt_use_q;
+      mp_d      = mp_use_q;
+      valid_d   = 1'b0;
+      pending_d = 1'b0;
+    end else begin
+      if (load) begin                      // valley: period (in the carrier), dead time, minimum pulse
+        dt_d = dt_next_q;
+        mp_d = mp_next_q;
+      end
+      if (take) begin                      // update point: all three phases together
+        cmp_d     = snap_cmp;
+        sector_d  = duty_sector;
+        sat_d     = duty_sat;
+        err_d     = duty_err;
+        valid_d   = 1'b1;
+        update_d  = 1'b1;
+        pending_d = 1'b0;
+      end
     end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      upd_q          <= UpdValley;
+      upd_err_q      <= 1'b0;
+      presc_q        <= '0;
+      cnt_q          <= '0;
+      pl2_q          <= '0;
+      vps_q          <= 1'b0;
+      pps_q          <= 1'b0;
+      start_q        <= 1'b0;
+      ev_valley_q    <= 1'b0;
+      pending_q      <= 1'b0;
+      calc_period_q  <= CntWidth'(MinPeriod);
+      calc_thr_q     <= '0;
       freq_q         <= '0;
       period_next_q  <= CntWidth'(MinPeriod);
       dt_next_q      <= '0;
       mp_next_q      <= '0;
-      m_clamp_q      <= 1'b0;
       period_clamp_q <= 1'b0;
       freq_clamp_q   <= 1'b0;
       dt_q           <= '0;
       mp_q           <= '0;
       cmp_q          <= '0;
       sector_q       <= '0;
-      result_q       <= 1'b0;
       valid_q        <= 1'b0;
+      sat_q          <= 1'b0;
+      err_q          <= 1'b0;
+      update_q       <= 1'b0;
     end else begin
+      upd_q          <= upd_d;
+      upd_err_q      <= upd_err_d;
+      presc_q        <= presc_d;
+      cnt_q          <= cnt_d;
+      pl2_q          <= pl2_d;
+      vps_q          <= vps_d;
+      pps_q          <= pps_d;
+      start_q        <= run && event_now;
+      ev_valley_q    <= vps;
+      pending_q      <= pending_d;
+      calc_period_q  <= calc_period_d;
+      calc_thr_q     <= calc_thr_d;
       freq_q         <= freq_d;
       period_next_q  <= period_next_d;
       dt_next_q      <= dt_next_d;
       mp_next_q      <= mp_next_d;
-      m_clamp_q      <= m_clamp_d;
       period_clamp_q <= period_clamp_d;
       freq_clamp_q   <= freq_clamp_d;
       dt_q           <= dt_d;
       mp_q           <= mp_d;
       cmp_q          <= cmp_d;
       sector_q       <= sector_d;
-      result_q       <= result_d;
       valid_q        <= valid_d;
+      sat_q          <= sat_d;
+      err_q          <= err_d;
+      update_q       <= update_d;
     end
   end
 
@@ -374,18 +542,22 @@ module svpwm_core #(
 
   // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16
   logic unused_acc;
-  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy};
+  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1]};
 
   assign pole_o         = pole;
   assign carrier_o      = count;
   assign carrier_up_o   = up;
   assign valley_o       = valley;
   assign peak_o         = peak;
+  assign update_o       = update_q;
+  assign adc_trig_o     = (valley && adc_trig_i[0]) || (peak && adc_trig_i[1]);
+  assign sync_o         = valley;
   assign sector_o       = sector_q;
   assign cmp_o          = cmp_q;
   assign period_o       = period_act;
   assign running_o      = run && valid_q;
-  assign m_clamp_o      = m_clamp_q;
+  assign sat_o          = sat_q;
+  assign cfg_err_o      = err_q || upd_err_q;
   assign period_clamp_o = period_clamp_q;
   assign freq_clamp_o   = freq_clamp_q;
   assign locked_o       = locked_q;
@@ -421,7 +593,7 @@ module svpwm_core #(
   always_comb if (rst_ni) assert (count <= period_act && period_act != '0);
   always_comb if (rst_ni) assert (period_next_q >= CntWidth'(MinPeriod));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    if (cmp_q != $past(cmp_q)) assert ($past(load) && $past(run));
+    if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run));
     if (dt_q != $past(dt_q) || mp_q != $past(mp_q)) assert ($past(load));
   end
   // a locked configuration does not change

@@ -1,52 +1,87 @@
 // SPDX-License-Identifier: Apache-2.0
-// svpwm_duty: multiplier-based duty calculator, angle + m + period -> three compare values.
-// d_a = m sin(60 deg - theta'), d_b = m sin(theta')  (Minas eq. (4), AVR495 sec. 4.2, Verma (29)-(30));
-// C = P/2 * (1 + k), k = +-d_a +- d_b per sector (AVR495 Table 4-3), which gives the symmetric
-// seven-segment pattern of Minas eq. (6)/(7) and Table I: V0 split at both ends, V7 in the middle.
-// sin() comes from sine_rom by linear interpolation between its 0..60 deg points, so the 16-bit
-// in-sector angle (0.0009 deg) is used in full. One 16x16 multiplier (one iCE40 DSP) is time-shared
-// by an 11-step sequence: 2 interpolations, 2 products m*sin, 2 products d*P, then the sums.
-// Arithmetic: exactly model/svpwm_model/fixed.py:compare_values() (the golden model).
+// svpwm_duty: the compute path -- a voltage reference in any input mode -> sector and dwell times ->
+// hexagon clamp -> three compare values (AVR495 Table 4-3) -> zero-vector placement (SVPWM / DPWM).
+// Modes (mode_i): 0 FREQ  sector + angle from the phase accumulator, magnitude m_i
+//                 1 VF    as FREQ, m = min(vf_mmax, vf_boost + |f| * vf_slope)  (AVR495 V/f law)
+//                 2 POLAR angle theta_i (2^16 = 360 deg) + magnitude m_i
+//                 3 AB    v_alpha = v1_i, v_beta = v2_i, sector and dwell times without trigonometry
+//                 4 DQ    v_d = v1_i, v_q = v2_i, angle theta_i: inverse Park in the sector frame
+//                 5..7    invalid: the zero vector (all phases 50 %) and err_o
+// Polar path: T1 = m sin(60 - theta'), T2 = m sin(theta') (Minas eq. (4), AVR495 sec. 4.2) from the 0..60 deg
+// sine_rom by linear interpolation. AB / DQ: projections X = v_beta, Y = (sqrt3 v_alpha + v_beta)/2,
+// Z = (v_beta - sqrt3 v_alpha)/2; the sector is where q_s >= 0 > q_{s+1} for q = (X, Z, -Y, -X, -Z, Y),
+// T2 = q_s, T1 = -q_{s+1} (Minas eq. (5) generalised). A vector beyond the hexagon (T1 + T2 > 1) is
+// clamped to its boundary keeping the angle: min(T1, T2) is divided by T1 + T2 (restoring divider,
+// 2 bits per clock), the other becomes 1 - q (sat_o). Arithmetic: exactly
+// model/svpwm_model/fixed.py:modulate() (the golden model).
+// One 16x16 multiplier (one iCE40 DSP) and the single-port ROM are time-shared by a fixed schedule.
 // Parameters: CntWidth - period / compare width (8..16).
-// Latency: 12 clocks from start_i to done_o; outputs hold until the next done_o.
-// Restrictions: m_i <= 0x8000 (1.0) -- svpwm_core clamps it; start_i is ignored while busy_o.
+// Latency: DutyLatency = 33 clocks from start_i to done_o, the same in every mode; outputs hold until the
+// next done_o. Restrictions: start_i is ignored while busy_o (abort_i first to restart).
 `default_nettype none
 
 module svpwm_duty #(
   parameter int CntWidth = 16
 ) (
-  input  logic                  clk_i,      // core clock
-  input  logic                  rst_ni,     // asynchronous reset, active low
-  input  logic                  start_i,    // sample the inputs below and start
-  input  logic [2:0]            sector_i,   // 0..5
-  input  logic [15:0]           angle_i,    // theta' / 60 deg, UQ0.16 (8-bit ROM index + 8-bit fraction)
-  input  logic [15:0]           m_i,        // modulation index, UQ1.15, <= 0x8000
-  input  logic [CntWidth-1:0]   period_i,   // half carrier period P the compare values are scaled to
-  output logic                  busy_o,     // a computation is running
-  output logic                  done_o,     // one-cycle pulse: the outputs below are new
-  output logic [2:0]            sector_o,   // sector of the result
-  output logic [3*CntWidth-1:0] cmp_o       // {C_c, C_b, C_a}, each in [0, P]
+  input  logic                  clk_i,        // core clock
+  input  logic                  rst_ni,       // asynchronous reset, active low
+  input  logic                  start_i,      // sample the inputs below and start
+  input  logic                  abort_i,      // stop a computation (the core stopped): back to idle
+  input  logic [2:0]            mode_i,       // input mode (above)
+  input  logic [2:0]            sector_i,     // phase accumulator: sector 0..5 (FREQ, VF)
+  input  logic [15:0]           angle_i,      // phase accumulator: theta' / 60 deg, UQ0.16 (FREQ, VF)
+  input  logic [15:0]           theta_i,      // electrical angle, 2^16 = 360 deg (POLAR, DQ)
+  input  logic [15:0]           m_i,          // magnitude, UQ1.15 (FREQ, POLAR)
+  input  logic [15:0]           fabs_i,       // |frequency word| >> (FreqWidth - 17) (VF)
+  input  logic signed [15:0]    v1_i,         // v_alpha or v_d, Q2.14 (AB, DQ)
+  input  logic signed [15:0]    v2_i,         // v_beta or v_q, Q2.14 (AB, DQ)
+  input  logic [15:0]           vf_boost_i,   // V/f: m at zero frequency, UQ1.15
+  input  logic [15:0]           vf_slope_i,   // V/f: m LSBs per fabs_i LSB, UQ8.8
+  input  logic [15:0]           vf_mmax_i,    // V/f: largest m, UQ1.15
+  input  logic [1:0]            dpwm_i,       // 0 SVPWM, 1 DPWMMIN, 2 DPWMMAX, 3 DPWM1 (60 deg)
+  input  logic [CntWidth-1:0]   period_i,     // half carrier period P the compare values are scaled to
+  output logic                  busy_o,       // a computation is running
+  output logic                  done_o,       // one-cycle pulse: the outputs below are new
+  output logic [2:0]            sector_o,     // sector of the result
+  output logic [3*CntWidth-1:0] cmp_o,        // {C_c, C_b, C_a}, each in [0, P]
+  output logic                  sat_o,        // the reference was clamped to the hexagon
+  output logic                  err_o         // invalid mode: zero vector
 );
 
-  localparam int KFrac   = 8;                    // fraction bits kept of P*d (model K_FRAC)
-  localparam int KWidth  = CntWidth + KFrac + 3;  // signed width of (P+1)*2^KFrac +- (A +- B)
+  localparam int KFrac  = 8;                     // fraction bits kept of P*d (model K_FRAC)
+  localparam int KWidth = CntWidth + KFrac + 3;  // signed width of (P+1)*2^KFrac +- (A +- B)
+  localparam int XW     = 22;                    // signed projections X, Y, Z and dwell sums
+  localparam int LastSt = 32;                    // the schedule: steps 1 .. LastSt, done_o after it
+
+  localparam logic [2:0] ModeFreq = 3'd0, ModeVf = 3'd1, ModePolar = 3'd2, ModeAb = 3'd3, ModeDq = 3'd4;
+  localparam logic [15:0] Sqrt3Half = 16'd56756;        // round(sqrt(3)/2 * 2^16)
+  localparam logic [XW-1:0] DOne = XW'(32'h1_0000);     // dwell time of a whole period
 
   if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
     initial $fatal(1, "svpwm_duty: CntWidth must be 8..16, got %0d", CntWidth);
   end
 
   // ---- state -------------------------------------------------------------------------------------
-  logic [3:0]            st_d, st_q;           // 0 idle, 1..11 steps
-  logic [2:0]            sector_d, sector_q, sector_out_d, sector_out_q;
-  logic [7:0]            idx_d, idx_q, fr_d, fr_q;
-  logic [15:0]           m_d, m_q;
+  logic [5:0]            st_d, st_q;                        // 0 idle, 1..LastSt steps
+  logic [2:0]            mode_d, mode_q, sec0_d, sec0_q, sector_d, sector_q, sector_out_d, sector_out_q;
+  logic [1:0]            dpwm_d, dpwm_q;
+  logic [15:0]           a16_d, a16_q, u16_d, u16_q;        // theta' and |theta' - 30 deg|, UQ0.16 of 60 deg
+  logic [15:0]           m_d, m_q, fa_d, fa_q, boost_d, boost_q, slope_d, slope_q, mmax_d, mmax_q;
+  logic signed [15:0]    v1_d, v1_q, v2_d, v2_q;
   logic [CntWidth-1:0]   p_d, p_q;
-  logic [15:0]           r0_d, r0_q;           // R[idx], later R[256-idx]
-  logic [15:0]           sb_d, sb_q, sa_d, sa_q, db_d, db_q, da_d, da_q;
-  logic [CntWidth+7:0]   b8_d, b8_q;           // (d_b * P) >> 8
-  logic [CntWidth+9:0]   sum_d, sum_q, dif_d, dif_q;   // A + B, A - B (signed), registered
-  logic [31:0]           prod_d, prod_q;       // the shared multiplier's registered product
-  logic [3*CntWidth-1:0] cmp_d, cmp_q;
+  logic [15:0]           r0_d, r0_q;                        // ROM sample held for the interpolation
+  logic [15:0]           h_d, h_q, g_d, g_q, sb_d, sb_q, sa_d, sa_q, ct_d, ct_q, c60_d, c60_q;
+  logic [XW-1:0]         x_d, x_q, y_d, y_q, z_d, z_q;      // signed projections (dwell units)
+  logic [XW-1:0]         t1_d, t1_q, t2_d, t2_q;            // dwell times (unsigned values)
+  logic [XW-1:0]         div_s_d, div_s_q, rem_d, rem_q;    // divisor T1 + T2, remainder
+  logic [15:0]           quo_d, quo_q;
+  logic                  sat_d, sat_q, first_d, first_q, err_d, err_q, sat_out_d, sat_out_q,
+                         err_out_d, err_out_q;
+  logic [CntWidth+7:0]   b8_d, b8_q;                        // (T2 * P) >> 8
+  logic [CntWidth+9:0]   sum_d, sum_q, dif_d, dif_q;        // A + B, A - B (signed)
+  logic signed [CntWidth+1:0] sh_d, sh_q;                   // zero-vector shift of all three C
+  logic [31:0]           prod_d, prod_q;                    // the shared multiplier's registered product
+  logic [3*CntWidth-1:0] c_d, c_q, cmp_d, cmp_q;
   logic                  done_d, done_q;
 
   // ---- sine ROM ----------------------------------------------------------------------------------
@@ -59,37 +94,69 @@ module svpwm_duty #(
     .data_o (rom_data)
   );
 
+  // two interpolations: u = |theta' - 30| at steps 1..6 (h = sin u, g = sin(60 - u)), then theta' at
+  // steps 5..10 (sb = sin theta', sa = sin(60 - theta')); each reads R[i], R[i+1], R[256-i], R[255-i]
   always_comb begin
     unique case (st_q)
-      4'd1:    rom_addr = {1'b0, idx_q};                 // R[idx]
-      4'd2:    rom_addr = {1'b0, idx_q} + 9'd1;          // R[idx+1]
-      4'd3:    rom_addr = 9'd256 - {1'b0, idx_q};        // R[256-idx]
-      4'd4:    rom_addr = 9'd255 - {1'b0, idx_q};        // R[255-idx]
+      6'd1:    rom_addr = {1'b0, u16_q[15:8]};
+      6'd2:    rom_addr = {1'b0, u16_q[15:8]} + 9'd1;
+      6'd3:    rom_addr = 9'd256 - {1'b0, u16_q[15:8]};
+      6'd4:    rom_addr = 9'd255 - {1'b0, u16_q[15:8]};
+      6'd5:    rom_addr = {1'b0, a16_q[15:8]};
+      6'd6:    rom_addr = {1'b0, a16_q[15:8]} + 9'd1;
+      6'd7:    rom_addr = 9'd256 - {1'b0, a16_q[15:8]};
+      6'd8:    rom_addr = 9'd255 - {1'b0, a16_q[15:8]};
       default: rom_addr = '0;
     endcase
   end
 
-  // ---- shared multiplier ------------------------------------------------------------------------
-  logic [15:0] mul_a, mul_b;
+  // ---- shared multiplier: unsigned 16 x 16, signs handled outside (sign-magnitude) ----------------
+  logic [15:0] mul_a, mul_b, v1_mag, v2_mag;
+  logic        dq, ab, polar_like;
+
+  assign v1_mag     = v1_q[15] ? 16'(-v1_q) : v1_q;
+  assign v2_mag     = v2_q[15] ? 16'(-v2_q) : v2_q;
+  assign dq         = mode_q == ModeDq;
+  assign ab         = mode_q == ModeAb;
+  assign polar_like = mode_q == ModeFreq || mode_q == ModeVf || mode_q == ModePolar;
 
   always_comb begin
     mul_a = '0;
     mul_b = '0;
     unique case (st_q)
-      4'd3:    begin mul_a = rom_data - r0_q; mul_b = {8'd0, fr_q}; end   // (R[idx+1]-R[idx]) * fr
-      4'd5:    begin mul_a = r0_q - rom_data; mul_b = {8'd0, fr_q}; end   // (R[256-idx]-R[255-idx]) * fr
-      4'd6:    begin mul_a = m_q;  mul_b = sb_q; end                      // m * sin(theta')
-      4'd7:    begin mul_a = m_q;  mul_b = sa_q; end                      // m * sin(60-theta')
-      4'd8:    begin mul_a = db_q; mul_b = 16'(p_q); end                  // d_b * P
-      4'd9:    begin mul_a = da_q; mul_b = 16'(p_q); end                  // d_a * P
+      6'd2:  if (ab) begin mul_a = v1_mag; mul_b = Sqrt3Half; end         // sqrt3/2 |v_alpha|
+      6'd3:  begin mul_a = rom_data - r0_q; mul_b = {8'd0, u16_q[7:0]}; end
+      6'd4:  begin mul_a = fa_q; mul_b = slope_q; end                      // V/f: |f| * slope
+      6'd5:  begin mul_a = r0_q - rom_data; mul_b = {8'd0, u16_q[7:0]}; end
+      6'd7:  begin mul_a = rom_data - r0_q; mul_b = {8'd0, a16_q[7:0]}; end
+      6'd8:  begin mul_a = v2_mag; mul_b = ct_q; end                       // |v_q| cos theta'
+      6'd9:  begin mul_a = r0_q - rom_data; mul_b = {8'd0, a16_q[7:0]}; end
+      6'd10: begin mul_a = dq ? v2_mag : m_q; mul_b = dq ? c60_q : sb_q; end  // |v_q| cos(60-t') | m sin t'
+      6'd11: begin mul_a = dq ? v1_mag : m_q; mul_b = sb_q; end            // |v_d| sin t'    | m sin(60-t')
+      6'd12: begin mul_a = v1_mag; mul_b = sa_q; end                       // |v_d| sin(60-t')
+      6'd26: begin mul_a = t2_q[15:0]; mul_b = 16'(p_q); end               // T2 * P
+      6'd27: begin mul_a = t1_q[15:0]; mul_b = 16'(p_q); end               // T1 * P
       default: ;
     endcase
+    if (st_q == 6'd11 && !dq) mul_b = sa_q;
   end
 
   assign prod_d = mul_a * mul_b;
 
+  // rounded scalings of the product: interpolation (>> 8), m * sin (>> 15), voltage * trig (>> 14)
+  logic [15:0]   p_int;
+  logic [16:0]   p_m;
+  logic [XW-1:0] p_v;
+  assign p_int = 16'((prod_q + 32'd128) >> 8);
+  assign p_m   = 17'((prod_q + 32'd16384) >> 15);
+  assign p_v   = XW'((prod_q + 32'd8192) >> 14);
+
+  function automatic logic [XW-1:0] neg_if(input logic [XW-1:0] v, input logic n);
+    neg_if = n ? XW'(-v) : v;
+  endfunction
+
   // ---- compare values: AVR495 Table 4-3 ----------------------------------------------------------
-  // selection per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = d_a P, B = d_b P
+  // selection per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = T1 P, B = T2 P
   function automatic logic [5:0] sector_sel(input logic [2:0] s);
     unique case (s)
       3'd0:    sector_sel = {2'd0, 2'd2, 2'd1};   // sector 1: a -da-db, b da-db, c da+db
@@ -101,23 +168,64 @@ module svpwm_duty #(
     endcase
   endfunction
 
+  // ---- sector from the projections (AB, DQ) ------------------------------------------------------
+  logic [XW-1:0] q [6];
+  logic [2:0]    sw, sw_sum;
+  logic [XW-1:0] sel_t1, sel_t2;
+  logic          found;
+
+  always_comb begin
+    q[0] = x_q;
+    q[1] = z_q;
+    q[2] = XW'(-y_q);
+    q[3] = XW'(-x_q);
+    q[4] = XW'(-z_q);
+    q[5] = y_q;
+    found  = 1'b0;
+    sw     = '0;
+    sel_t1 = '0;
+    sel_t2 = '0;
+    for (int s = 0; s < 6; s++) begin
+      if (!found && !q[s][XW-1] && q[(s + 1) % 6][XW-1]) begin
+        found  = 1'b1;
+        sw     = 3'(s);
+        sel_t2 = q[s];
+        sel_t1 = XW'(-q[(s + 1) % 6]);
+      end
+    end
+    sw_sum = dq ? sw + sec0_q : sw;                          // DQ: plus theta's own sector, mod 6
+    if (dq && (sw + sec0_q) >= 4'd6) sw_sum = 3'(sw + sec0_q - 4'd6);
+  end
+
+  // ---- divider step: two restoring steps per clock ------------------------------------------------
+  logic [XW-1:0] r_a, r_b;
+  logic          qa, qb;
+
+  always_comb begin
+    r_a = {rem_q[XW-2:0], 1'b0};
+    qa  = r_a >= div_s_q;
+    if (qa) r_a = r_a - div_s_q;
+    r_b = {r_a[XW-2:0], 1'b0};
+    qb  = r_b >= div_s_q;
+    if (qb) r_b = r_b - div_s_q;
+  end
+
+  // ---- compare-value arithmetic -------------------------------------------------------------------
   logic signed [KWidth-1:0] a8s, b8s, sum_ab, dif_ab, base, c_x;
   logic [5:0]               sel;
+  logic [CntWidth-1:0]      c_ph [3];
+  logic [CntWidth-1:0]      c_lo, c_hi;
 
-  // step 10: A + B and A - B from this cycle's product (A) and the stored B; step 11: per phase
-  // C = ((P + 1) << 8 +- (A + B or A - B)) >> 9 -- one add/subtract each, so no adder chains.
   always_comb begin
-    a8s    = KWidth'(prod_q[CntWidth+15:8]);                 // (d_a * P) >> 8, product of step 9
+    a8s    = KWidth'(prod_q[CntWidth+15:8]);                 // (T1 * P) >> 8, product of step 27
     b8s    = KWidth'(b8_q);
-    sum_d  = (st_q == 4'd10) ? (CntWidth+10)'(a8s + b8s) : sum_q;
-    dif_d  = (st_q == 4'd10) ? (CntWidth+10)'(a8s - b8s) : dif_q;
     sum_ab = KWidth'($signed(sum_q));
     dif_ab = KWidth'($signed(dif_q));
     base   = KWidth'({p_q, 8'd0}) + KWidth'(9'd256);        // (P + 1) << 8
     sel    = sector_sel(sector_q);
-    cmp_d  = cmp_q;
     c_x    = '0;
-    if (st_q == 4'd11) begin
+    c_d    = c_q;
+    if (st_q == 6'd29) begin
       for (int ph = 0; ph < 3; ph++) begin
         unique case (sel[2*ph +: 2])
           2'd0:    c_x = base + sum_ab;
@@ -126,8 +234,15 @@ module svpwm_duty #(
           default: c_x = base - dif_ab;
         endcase
         c_x = c_x >>> (KFrac + 1);
-        cmp_d[ph*CntWidth +: CntWidth] = c_x[CntWidth-1:0];
+        c_d[ph*CntWidth +: CntWidth] = c_x[CntWidth-1:0];
       end
+    end
+    for (int ph = 0; ph < 3; ph++) c_ph[ph] = c_q[ph*CntWidth +: CntWidth];
+    c_lo = c_ph[0];
+    c_hi = c_ph[0];
+    for (int ph = 1; ph < 3; ph++) begin
+      if (c_ph[ph] < c_lo) c_lo = c_ph[ph];
+      if (c_ph[ph] > c_hi) c_hi = c_ph[ph];
     end
   end
 
@@ -135,99 +250,293 @@ module svpwm_duty #(
   assign unused_cx = ^c_x[KWidth-1:CntWidth];   // c_x is in [0, P] (see model bound test)
 
   // ---- sequence ----------------------------------------------------------------------------------
+  logic [15:0]   theta6_lo;
+  logic [2:0]    theta6_hi;
+  logic [15:0]   a16_in;
+  logic [15:0]   u16_in;
+  logic [24:0]   vf_sum;
+  logic [XW-1:0] tsum, tlo, one_minus_q, t1_cl, t2_cl, t1_fin, t2_fin;
+
+  always_comb begin
+    {theta6_hi, theta6_lo} = {theta_i, 2'b00} + {1'b0, theta_i, 1'b0};   // 6 theta = sector.a16
+    a16_in = (mode_i == ModePolar || mode_i == ModeDq) ? theta6_lo : angle_i;
+    u16_in = (a16_in >= 16'h8000) ? a16_in - 16'h8000 : 16'h8000 - a16_in;   // <= 0x8000
+    vf_sum = 25'(boost_q) + 25'((prod_q + 32'd128) >> 8);
+    tsum   = t1_q + t2_q;
+    tlo    = (t1_q <= t2_q) ? t1_q : t2_q;
+    one_minus_q = DOne - XW'(quo_q);
+    t1_cl  = !sat_q ? t1_q : first_q ? XW'(quo_q) : one_minus_q;
+    t2_cl  = !sat_q ? t2_q : first_q ? one_minus_q : XW'(quo_q);
+    t1_fin = (t1_cl > XW'(16'hFFFF)) ? XW'(16'hFFFF) : t1_cl;   // 16-bit multiplier operand
+    t2_fin = (t2_cl > XW'(16'hFFFF)) ? XW'(16'hFFFF) : t2_cl;
+  end
+
   always_comb begin
     st_d         = st_q;
+    mode_d       = mode_q;
+    sec0_d       = sec0_q;
     sector_d     = sector_q;
-    idx_d        = idx_q;
-    fr_d         = fr_q;
+    dpwm_d       = dpwm_q;
+    a16_d        = a16_q;
+    u16_d        = u16_q;
     m_d          = m_q;
+    fa_d         = fa_q;
+    boost_d      = boost_q;
+    slope_d      = slope_q;
+    mmax_d       = mmax_q;
+    v1_d         = v1_q;
+    v2_d         = v2_q;
     p_d          = p_q;
     r0_d         = r0_q;
+    h_d          = h_q;
+    g_d          = g_q;
     sb_d         = sb_q;
     sa_d         = sa_q;
-    db_d         = db_q;
-    da_d         = da_q;
+    ct_d         = ct_q;
+    c60_d        = c60_q;
+    x_d          = x_q;
+    y_d          = y_q;
+    z_d          = z_q;
+    t1_d         = t1_q;
+    t2_d         = t2_q;
+    div_s_d      = div_s_q;
+    rem_d        = rem_q;
+    quo_d        = quo_q;
+    sat_d        = sat_q;
+    first_d      = first_q;
+    err_d        = err_q;
     b8_d         = b8_q;
+    sum_d        = sum_q;
+    dif_d        = dif_q;
+    sh_d         = sh_q;
+    cmp_d        = cmp_q;
     sector_out_d = sector_out_q;
+    sat_out_d    = sat_out_q;
+    err_out_d    = err_out_q;
     done_d       = 1'b0;
     unique case (st_q)
-      4'd0: begin
+      6'd0: begin
         if (start_i) begin
-          st_d     = 4'd1;
-          sector_d = sector_i;
-          idx_d    = angle_i[15:8];
-          fr_d     = angle_i[7:0];
-          m_d      = m_i;
-          p_d      = period_i;
+          mode_d  = mode_i;
+          sec0_d  = (mode_i == ModePolar || mode_i == ModeDq) ? theta6_hi : sector_i;
+          a16_d   = a16_in;
+          u16_d   = u16_in;                // |theta' - 30 deg|
+          m_d     = m_i;
+          fa_d    = fabs_i;
+          boost_d = vf_boost_i;
+          slope_d = vf_slope_i;
+          mmax_d  = vf_mmax_i;
+          v1_d    = v1_i;
+          v2_d    = v2_i;
+          dpwm_d  = dpwm_i;
+          p_d     = period_i;
         end
       end
-      4'd2:  r0_d = rom_data;                                              // R[idx]
-      4'd3:  ;                                                             // product (R[idx+1]-R[idx])*fr
-      4'd4: begin
-        sb_d = r0_q + 16'((prod_q + 32'd128) >> 8);                        // sin(theta')
-        r0_d = rom_data;                                                   // R[256-idx]
+      6'd2:  r0_d = rom_data;                                   // R[j]
+      6'd3: begin                                               // AB: X, Y, Z from sqrt3/2 v_alpha
+        if (ab) begin
+          x_d = XW'({{(XW-18){v2_q[15]}}, v2_q, 2'b00});        // v_beta in dwell units
+          y_d = neg_if(p_v, v1_q[15]) + XW'({{(XW-17){v2_q[15]}}, v2_q, 1'b0});
+          z_d = XW'({{(XW-17){v2_q[15]}}, v2_q, 1'b0}) - neg_if(p_v, v1_q[15]);
+        end
       end
-      4'd5:  ;                                                             // product (R[256-idx]-R[255-idx])*fr
-      4'd6:  sa_d = r0_q - 16'((prod_q + 32'd128) >> 8);                   // sin(60 - theta')
-      4'd7:  db_d = 16'((prod_q + 32'd16384) >> 15);                       // d_b, UQ0.16
-      4'd8:  da_d = 16'((prod_q + 32'd16384) >> 15);                       // d_a, UQ0.16
-      4'd9:  b8_d = prod_q[CntWidth+15:8];                                 // (d_b * P) >> 8
-      4'd10: ;                                                             // A + B, A - B (above)
-      4'd11: begin                                                         // compare values (above)
+      6'd4: begin
+        h_d  = r0_q + p_int;                                    // sin(u)
+        r0_d = rom_data;                                        // R[256-j]
+      end
+      6'd5: if (mode_q == ModeVf)                               // V/f law: m = min(m_max, boost + |f| slope)
+              m_d = (vf_sum > 25'(mmax_q)) ? mmax_q : vf_sum[15:0];
+      6'd6: begin
+        g_d  = r0_q - p_int;                                    // sin(60 - u)
+        r0_d = rom_data;                                        // R[i]
+      end
+      6'd7: begin                                               // cos theta', cos(60 - theta')
+        ct_d  = (a16_q < 16'h8000) ? (({1'b0, g_q} + {1'b0, h_q} > 17'hFFFF) ? 16'hFFFF : g_q + h_q) : g_q;
+        c60_d = (a16_q < 16'h8000) ? g_q : (({1'b0, g_q} + {1'b0, h_q} > 17'hFFFF) ? 16'hFFFF : g_q + h_q);
+      end
+      6'd8: begin
+        sb_d = r0_q + p_int;                                    // sin(theta')
+        r0_d = rom_data;                                        // R[256-i]
+      end
+      6'd9:  if (dq) x_d = neg_if(p_v, v2_q[15]);               // v_q cos theta'
+      6'd10: sa_d = r0_q - p_int;                               // sin(60 - theta')
+      6'd11: begin
+        if (dq) z_d = neg_if(p_v, v2_q[15]);                    // v_q cos(60 - theta')
+        else    t2_d = XW'(p_m);                                // T2 = m sin(theta')
+      end
+      6'd12: begin
+        if (dq) x_d = x_q + neg_if(p_v, v1_q[15]);              // + v_d sin theta'
+        else    t1_d = XW'(p_m);                                // T1 = m sin(60 - theta')
+      end
+      6'd13: if (dq) z_d = z_q - neg_if(p_v, v1_q[15]);         // - v_d sin(60 - theta')
+      6'd14: if (dq) y_d = x_q - z_q;                           // Y = X - Z
+      6'd15: begin                                              // sector and dwell times
+        err_d = !(polar_like || ab || dq);
+        if (ab || dq) begin
+          sector_d = sw_sum;
+          t1_d     = sel_t1;
+          t2_d     = sel_t2;
+        end else if (polar_like) begin
+          sector_d = sec0_q;
+        end else begin
+          sector_d = '0;
+          t1_d     = '0;
+          t2_d     = '0;
+        end
+      end
+      6'd16: begin                                              // hexagon clamp: q = min * 2^16 / sum
+        div_s_d = tsum;
+        rem_d   = tlo;
+        sat_d   = tsum > DOne;
+        first_d = t1_q <= t2_q;
+        quo_d   = '0;
+      end
+      6'd17, 6'd18, 6'd19, 6'd20, 6'd21, 6'd22, 6'd23, 6'd24: begin
+        rem_d = r_b;
+        quo_d = {quo_q[13:0], qa, qb};
+      end
+      6'd25: begin                                              // clamped, capped at 1 - 2^-16
+        t1_d = t1_fin;
+        t2_d = t2_fin;
+      end
+      6'd27: b8_d = prod_q[CntWidth+15:8];                      // (T2 * P) >> 8
+      6'd28: begin                                              // A + B, A - B
+        sum_d = (CntWidth+10)'(a8s + b8s);
+        dif_d = (CntWidth+10)'(a8s - b8s);
+      end
+      6'd29: ;                                                  // compare values (above)
+      6'd30: begin                                              // zero-vector placement
+        unique case (dpwm_q)
+          2'd1:    sh_d = $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
+          2'd2:    sh_d = -$signed({2'b00, c_lo});
+          2'd3:    sh_d = ({1'b0, c_lo} + {1'b0, c_hi} < {1'b0, p_q})
+                          ? -$signed({2'b00, c_lo}) : $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
+          default: sh_d = '0;
+        endcase
+      end
+      6'd31: begin
+        for (int ph = 0; ph < 3; ph++)
+          cmp_d[ph*CntWidth +: CntWidth] = CntWidth'($signed({2'b00, c_ph[ph]}) + sh_q);
+      end
+      6'd32: begin
         sector_out_d = sector_q;
+        sat_out_d    = sat_q;
+        err_out_d    = err_q;
         done_d       = 1'b1;
       end
       default: ;
     endcase
-    if (st_q != 4'd0) st_d = (st_q == 4'd11) ? 4'd0 : st_q + 4'd1;
+    if (st_q == 6'd0) begin
+      if (start_i) st_d = 6'd1;
+    end else begin
+      st_d = (st_q == 6'(LastSt)) ? 6'd0 : st_q + 6'd1;
+    end
+    if (abort_i) begin
+      st_d   = 6'd0;
+      done_d = 1'b0;
+    end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       st_q         <= '0;
+      mode_q       <= '0;
+      sec0_q       <= '0;
       sector_q     <= '0;
-      idx_q        <= '0;
-      fr_q         <= '0;
+      dpwm_q       <= '0;
+      a16_q        <= '0;
+      u16_q        <= '0;
       m_q          <= '0;
+      fa_q         <= '0;
+      boost_q      <= '0;
+      slope_q      <= '0;
+      mmax_q       <= '0;
+      v1_q         <= '0;
+      v2_q         <= '0;
       p_q          <= '0;
       r0_q         <= '0;
+      h_q          <= '0;
+      g_q          <= '0;
       sb_q         <= '0;
       sa_q         <= '0;
-      db_q         <= '0;
-      da_q         <= '0;
+      ct_q         <= '0;
+      c60_q        <= '0;
+      x_q          <= '0;
+      y_q          <= '0;
+      z_q          <= '0;
+      t1_q         <= '0;
+      t2_q         <= '0;
+      div_s_q      <= '0;
+      rem_q        <= '0;
+      quo_q        <= '0;
+      sat_q        <= 1'b0;
+      first_q      <= 1'b0;
+      err_q        <= 1'b0;
       b8_q         <= '0;
       sum_q        <= '0;
       dif_q        <= '0;
+      sh_q         <= '0;
       prod_q       <= '0;
+      c_q          <= '0;
       cmp_q        <= '0;
       sector_out_q <= '0;
+      sat_out_q    <= 1'b0;
+      err_out_q    <= 1'b0;
       done_q       <= 1'b0;
     end else begin
       st_q         <= st_d;
+      mode_q       <= mode_d;
+      sec0_q       <= sec0_d;
       sector_q     <= sector_d;
-      idx_q        <= idx_d;
-      fr_q         <= fr_d;
+      dpwm_q       <= dpwm_d;
+      a16_q        <= a16_d;
+      u16_q        <= u16_d;
       m_q          <= m_d;
+      fa_q         <= fa_d;
+      boost_q      <= boost_d;
+      slope_q      <= slope_d;
+      mmax_q       <= mmax_d;
+      v1_q         <= v1_d;
+      v2_q         <= v2_d;
       p_q          <= p_d;
       r0_q         <= r0_d;
+      h_q          <= h_d;
+      g_q          <= g_d;
       sb_q         <= sb_d;
       sa_q         <= sa_d;
-      db_q         <= db_d;
-      da_q         <= da_d;
+      ct_q         <= ct_d;
+      c60_q        <= c60_d;
+      x_q          <= x_d;
+      y_q          <= y_d;
+      z_q          <= z_d;
+      t1_q         <= t1_d;
+      t2_q         <= t2_d;
+      div_s_q      <= div_s_d;
+      rem_q        <= rem_d;
+      quo_q        <= quo_d;
+      sat_q        <= sat_d;
+      first_q      <= first_d;
+      err_q        <= err_d;
       b8_q         <= b8_d;
       sum_q        <= sum_d;
       dif_q        <= dif_d;
+      sh_q         <= sh_d;
       prod_q       <= prod_d;
+      c_q          <= c_d;
       cmp_q        <= cmp_d;
       sector_out_q <= sector_out_d;
+      sat_out_q    <= sat_out_d;
+      err_out_q    <= err_out_d;
       done_q       <= done_d;
     end
   end
 
-  assign busy_o   = st_q != 4'd0;
+  assign busy_o   = st_q != 6'd0;
   assign done_o   = done_q;
   assign sector_o = sector_out_q;
   assign cmp_o    = cmp_q;
+  assign sat_o    = sat_out_q;
+  assign err_o    = err_out_q;
 
 endmodule
 

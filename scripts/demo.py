@@ -51,9 +51,11 @@ POINTS = [
 SWEEP = [dict(name=f"sweep_50hz_m{int(round(m * 100)):03d}", f_hz=50.0, m=m, period=P_VERMA, dt=DT_1US,
               save_edges=True, revs=2, vcd=False, title=f"m sweep: 50 Hz, m = {m}")
          for m in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)]
-# AVR495 Fig. 6-1: speed steps with the RTL in the loop (V/f + PI, motor model fed by the gate edges)
+# AVR495 Fig. 6-1: speed steps with the RTL in the loop (V/f + slip-regulated PI speed loop, motor model fed by the
+# gate edges). ctrl "slip": f = p n / 60 + PI slip command limited to +-1.5 Hz (motor.SlipPISpeed; why not AVR495's
+# PI -> frequency: see its docstring and model/tests/test_motor_loop.py); "avr495" reproduces the old loop.
 SPEED = dict(name="speed_loop_vf", kind="speed_loop", t_end_s=2.0, period=P_VERMA, dt=DT_1US, f_hz=0.0, m=0.0,
-             title="AVR495 Fig. 6-1: +700 -> -700 rpm, V/f + PI speed loop, RTL in the loop")
+             ctrl="slip", title="AVR495 Fig. 6-1: +700 -> -700 rpm, V/f + slip-regulated PI speed loop, RTL in the loop")
 
 
 class SetupError(RuntimeError):
@@ -245,7 +247,13 @@ def main(argv=None) -> int:
             print("  " + line)
         ss = (m.get("speed_loop") or {}).get("summary")
         if ss:
-            print(f"speed loop: {json.dumps(ss)}")
+            for k, v in ss.items():
+                if isinstance(v, dict):
+                    st = v["settle_2pct_s"]
+                    print(f"speed loop, {k} rpm: within +-2 % after {'not settled' if st is None else f'{st:.3f} s'}, "
+                          f"overshoot {v['overshoot_rpm']:.1f} rpm, ripple (last 0.2 s) "
+                          f"{v['ripple_pp_last_0p2s_rpm']:.1f} rpm p-p, mean error {v['mean_error_last_0p2s_rpm']:+.1f} rpm")
+            print(f"speed loop: peak stator current {ss['i_peak_max_A']:.2f} A")
         print(f"(analysis {time.perf_counter() - t1:.0f} s)")
         wall = time.perf_counter() - t0
     if err:

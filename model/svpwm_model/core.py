@@ -1,19 +1,24 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Clock-exact model of rtl/svpwm_core.sv: per-period compare values and every pole and gate edge.
+"""Clock-exact model of rtl/svpwm_core.sv: per-update compare values and every pole and gate edge.
 
 Time base: cycle 0 is the first clock with en_i = 1 (the valley of carrier period 0). A value "at
 cycle c" is a register's value during clock c; an edge "at cycle c" means the new value holds from c.
 
 Timeline (see README "Timing"):
 * period n starts at valley t_n with half period P_n: t_{n+1} = t_n + 2 P_n; its peak is t_n + P_n.
-* at the peak of period n the core samples the inputs u_n (freq, m, period, dt) and the angle; the
-  compare values computed from them, P_{n+1} = clamp(u_n.period) and dt_{n+1} = u_n.dt are active
-  from valley t_{n+1} on. Period 0 runs with the idle inputs' period and dead time and no compare
-  values (gates off); the first modulated period is n = 1.
-* the angle advances every running clock by the frequency word in force: the idle word until the
-  peak of period 0, u_n.freq from the peak of period n (inclusive) on.
-* pole x is high during cycles [t_n + C + 1, t_n + 2 P_n - C + 1) of period n (n >= 1).
-* gates: rtl/deadtime.sv per leg (model: deadtime.py), target OFF until cycle t_1 + 1.
+* update opportunities: the peak of every period (upd PEAK or BOTH) and the valley t_{n+1} (VALLEY or
+  BOTH); with the prescaler only every (presc + 1)-th opportunity updates (counter from 0 at the start).
+* an update at point T samples the reference in the clock S - 1, S = T - SAMPLE_LEAD: the angle used is
+  the accumulator at cycle S, the new frequency word steps it from cycle S on; the compare values are
+  active from T (a valley update is computed for P_{n+1} and its dead time, a peak update for P_n).
+* before every valley (at S - 1 of the valley sample) period, dead time, minimum pulse, upd and presc are
+  sampled: P_{n+1}, dt_{n+1}, mp_{n+1} are active from t_{n+1}; a changed (P, dt, mp) forces an update
+  at that valley; upd / presc apply to the opportunities after t_{n+1}.
+* ``inputs(n)`` are on the ports during the down half of period n (valley sample), ``peak_inputs(n)``
+  (default: inputs(n)) during its up half (peak sample). Period 0 runs with the idle inputs.
+* pole x is high during [t_n + C_up + 1, t_n + P_n + 1) if C_up < P_n and [t_n + P_n + 1,
+  t_n + 2 P_n - C_dn + 1) if C_dn < P_n, C_up / C_dn the values active at the valley / the peak.
+* gates: rtl/deadtime.sv per leg (model: deadtime.py), target OFF until the clock after the first update.
 """
 from __future__ import annotations
 
@@ -29,10 +34,35 @@ from .deadtime import HI, LO, OFF, LegState, simulate_events
 class Inputs:
     """Values on the core's input ports when they are sampled."""
     freq: int = 0           # signed frequency word
-    m: int = 0              # UQ1.15
+    m: int = 0              # UQ1.15 magnitude (freq / polar modes)
     period: int = 1536      # half period, clocks
     dt: int = 0             # dead time, clocks
     mp: int = 0             # minimum gate pulse, clocks
+    mode: int = fixed.MODE_FREQ
+    theta: int = 0          # 16-bit electrical angle (polar, dq)
+    v1: int = 0             # v_alpha / v_d, Q2.14
+    v2: int = 0             # v_beta / v_q, Q2.14
+    vf_boost: int = 0
+    vf_slope: int = 0
+    vf_mmax: int = 0
+    dpwm: int = fixed.DPWM_OFF
+    upd: int = fixed.UPD_VALLEY
+    presc: int = 0
+
+
+@dataclass(frozen=True)
+class Update:
+    """One update: compare values computed from a sample and active from ``load``."""
+    load: int               # cycle the values are active from (a valley or a peak)
+    sample: int             # S: the accumulator value at S was used (inputs read at S - 1)
+    at_peak: bool
+    theta: int              # full angle sector*2^W + angle at S (freq / vf modes; also recorded otherwise)
+    m: int | None           # magnitude used (freq, vf, polar), None for alpha-beta / dq
+    sector: int
+    cmp: tuple[int, int, int]
+    sat: bool
+    err: bool
+    period: int             # half period the values were computed for
 
 
 @dataclass
@@ -42,10 +72,12 @@ class Run:
     period: list[int] = field(default_factory=list)      # P_n
     dt: list[int] = field(default_factory=list)          # dead time active in period n
     mp: list[int] = field(default_factory=list)          # minimum pulse active in period n
-    cmp: list[tuple[int, int, int] | None] = field(default_factory=list)   # (C_a, C_b, C_c), None for n = 0
-    sector: list[int | None] = field(default_factory=list)                 # sector of the compare values
-    theta: list[int | None] = field(default_factory=list)  # exact full angle (sector*2^W + angle) used
-    m: list[int | None] = field(default_factory=list)      # clamped m used
+    cmp: list[tuple[int, int, int] | None] = field(default_factory=list)      # active at valley n (up half)
+    cmp_peak: list[tuple[int, int, int] | None] = field(default_factory=list)  # active at peak n (down half)
+    sector: list[int | None] = field(default_factory=list)   # sector of cmp[n]
+    theta: list[int | None] = field(default_factory=list)    # exact full angle cmp[n] was computed from
+    m: list[int | None] = field(default_factory=list)        # magnitude cmp[n] was computed with
+    updates: list[Update] = field(default_factory=list)      # every update, in time order
     pole_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, pole word {c,b,a})
     gate_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, {lo[2:0], hi[2:0]})
     end: int = 0                                           # edges are listed for cycles < end
@@ -66,6 +98,11 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
     return out
 
 
+def _upd_code(upd: int) -> int:
+    """upd_i as the core decodes it: 3 (invalid) counts as VALLEY (and raises cfg_err_o)."""
+    return fixed.UPD_VALLEY if upd == 3 else upd
+
+
 class CoreModel:
     """The golden model. State carried between runs: the angle and the dead-time FSMs."""
 
@@ -74,79 +111,129 @@ class CoreModel:
         self.legs = [LegState(0, 0, 0) for _ in range(3)]     # reset: off, dead time counts from release
 
     def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
-            stop: int | None = None) -> Run:
+            stop: int | None = None,
+            peak_inputs: Sequence[Inputs] | Callable[[int], Inputs] | None = None) -> Run:
         """Enable the core with ``idle`` on the inputs and run ``n_periods`` carrier periods.
 
-        ``inputs(n)`` / ``inputs[n]`` are the inputs sampled at the peak of period n (n = 0..N-1).
+        ``inputs(n)`` / ``inputs[n]`` are sampled before valley n + 1, ``peak_inputs(n)`` before peak n.
         ``stop``: en_i goes low at cycle t_N + stop (0 <= stop <= P_N; default: no stop, the run ends
         at t_N with the core still running -- the gate edges are then complete up to t_N).
         """
         get = inputs if callable(inputs) else (lambda n: inputs[n])
+        if peak_inputs is None:
+            pget = get
+        else:
+            pget = peak_inputs if callable(peak_inputs) else (lambda n: peak_inputs[n])
         full = 6 << fixed.PHASE_WIDTH
+        lead = fixed.SAMPLE_LEAD
         r = Run()
         p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp)
         dt_cur, mp_cur = idle.dt, idle.mp
         f_cur, _ = fixed.clamp_freq(idle.freq)
-        t, theta = 0, self.theta
-        cmp_cur: tuple[int, int, int] | None = None
-        pole_hi: list[list[tuple[int, int]]] = [[], [], []]   # high intervals per phase
-        for n in range(n_periods + 1):
-            r.valley.append(t)
-            if n == n_periods:
+        upd, presc, cnt = _upd_code(idle.upd), idle.presc, 0
+        t = 0
+        theta, th_t = self.theta, 0            # the angle at cycle th_t
+        stop_cycle = None
+        active: Update | None = None           # values in force
+        halves: list[tuple[int, int, Update | None]] = []   # (start cycle, half period, values) per half
+
+        def advance(to: int) -> int:
+            nonlocal theta, th_t
+            theta = (theta + f_cur * (to - th_t)) % full
+            th_t = to
+            return theta
+
+        def compute(u: Inputs, s: int, period: int, thr: int, at_peak: bool) -> Update:
+            nonlocal f_cur
+            th = advance(s)                     # theta(S): the old frequency word up to S
+            f_cur, _ = fixed.clamp_freq(u.freq)  # the new one from S on
+            sector, angle = th >> fixed.PHASE_WIDTH, th & ((1 << fixed.PHASE_WIDTH) - 1)
+            a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
+            sec, cmp, sat, err = fixed.modulate(u.mode, sector, a16, period, freq=f_cur, m=u.m, theta=u.theta,
+                                                v1=u.v1, v2=u.v2, vf_boost=u.vf_boost, vf_slope=u.vf_slope,
+                                                vf_mmax=u.vf_mmax, dpwm=u.dpwm)
+            cmp = tuple(fixed.snap_min_pulse(c, period, thr) for c in cmp)
+            if u.mode in (fixed.MODE_FREQ, fixed.MODE_POLAR):
+                m_used = u.m
+            elif u.mode == fixed.MODE_VF:
+                m_used = fixed.vf_m(f_cur, u.vf_boost, u.vf_slope, u.vf_mmax)
+            else:
+                m_used = None
+            return Update(load=s + lead, sample=s, at_peak=at_peak, theta=th, m=m_used, sector=sec, cmp=cmp,
+                          sat=sat, err=err, period=period)
+
+        n_total = n_periods if stop is None else n_periods + 1
+        for n in range(n_total):
+            last = n == n_periods                  # the partial period N before the stop
+            if not last:
+                r.valley.append(t)
+                r.period.append(p_cur)
+                r.dt.append(dt_cur)
+                r.mp.append(mp_cur)
+                r.cmp.append(active.cmp if active else None)
+                r.sector.append(active.sector if active else None)
+                r.theta.append(active.theta if active else None)
+                r.m.append(active.m if active else None)
+            else:
+                stop_cycle = t + stop
+            halves.append((t, p_cur, active))
+            # ---- peak opportunity ----
+            pk = t + p_cur
+            if upd in (fixed.UPD_PEAK, fixed.UPD_BOTH):
+                ev = cnt == 0
+                cnt = 0 if cnt >= presc else cnt + 1
+                s = pk - lead
+                if ev and (stop_cycle is None or s - 1 < stop_cycle):
+                    u_pk = pget(n) if not last else get(n - 1)   # the ports hold the last inputs
+                    up = compute(u_pk, s, p_cur, dt_cur + mp_cur, True)
+                    if stop_cycle is None or s < stop_cycle:     # the duty calculator started
+                        r.updates.append(up)
+                        active = up
+            if not last:
+                r.cmp_peak.append(active.cmp if active else None)
+            halves.append((pk, p_cur, active))
+            if last:
                 break
-            r.period.append(p_cur)
-            r.dt.append(dt_cur)
-            r.mp.append(mp_cur)
-            r.cmp.append(cmp_cur)
-            if cmp_cur is not None:
-                for ph, c in enumerate(cmp_cur):
-                    if c < p_cur:
-                        pole_hi[ph].append((t + c + 1, t + 2 * p_cur - c + 1))
-            # peak of period n: the angle has advanced P_n clocks at f_cur since the valley
-            theta = (theta + f_cur * p_cur) % full
+            # ---- valley opportunity ----
             u = get(n)
             p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp)
-            m_next, _ = fixed.clamp_m(u.m)
-            sector, angle = theta >> fixed.PHASE_WIDTH, theta & ((1 << fixed.PHASE_WIDTH) - 1)
-            a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
-            cmp_next = tuple(fixed.snap_min_pulse(c, p_next, u.dt + u.mp)
-                             for c in fixed.compare_values(sector, a16, m_next, p_next))
-            r.sector.append(sector)
-            r.theta.append(theta)
-            r.m.append(m_next)
-            f_cur, _ = fixed.clamp_freq(u.freq)
-            # rest of period n (peak to next valley): P_n clocks at the new frequency
-            theta = (theta + f_cur * p_cur) % full
+            forced = (p_next, u.dt, u.mp) != (p_cur, dt_cur, mp_cur)
+            opp = upd in (fixed.UPD_VALLEY, fixed.UPD_BOTH)
+            ev = (opp and cnt == 0) or forced
+            if opp:
+                cnt = 0 if cnt >= presc else cnt + 1
+            upd, presc = _upd_code(u.upd), u.presc
+            if ev:
+                up = compute(u, t + 2 * p_cur - lead, p_next, u.dt + u.mp, False)
+                r.updates.append(up)
+                active = up
             t += 2 * p_cur
-            p_cur, dt_cur, mp_cur, cmp_cur = p_next, u.dt, u.mp, cmp_next
-        t_end = t
-        # the sector/theta/m lists describe the compare values of the NEXT period; shift them so that
-        # index n describes period n (None for period 0)
-        r.sector = [None] + r.sector[:-1]
-        r.theta = [None] + r.theta[:-1]
-        r.m = [None] + r.m[:-1]
-        stop_cycle = None
-        if stop is not None:
+            p_cur, dt_cur, mp_cur = p_next, u.dt, u.mp
+        if stop is None:
+            r.valley.append(t)
+            end = t
+            advance(t)
+        else:
             if not 0 <= stop <= p_cur:
                 raise ValueError("stop must lie between the last valley and the following peak")
-            stop_cycle = t_end + stop
-            if cmp_cur is not None:       # period N runs until the stop
-                for ph, c in enumerate(cmp_cur):
-                    if c < p_cur:
-                        pole_hi[ph].append((t_end + c + 1, t_end + 2 * p_cur - c + 1))
-            theta = (theta + f_cur * stop) % full
+            r.valley.append(t)
             end = stop_cycle + 2          # the gates are off from stop_cycle + 1
-        else:
-            end = t_end
+            advance(stop_cycle)
         self.theta = theta
         r.end = end
-        # ---- poles: merge touching intervals, clip at the stop (pole regs clear the cycle after) ----
+        # ---- poles: per half period, merge touching intervals, clip at the stop ----
         pole_ch: dict[int, list[tuple[int, int]]] = {}
         for ph in range(3):
             iv: list[list[int]] = []
-            for a, b in pole_hi[ph]:
+            for k, (h0, p, vals) in enumerate(halves):
+                if vals is None:
+                    continue
+                c = vals.cmp[ph]
+                if c >= p:
+                    continue
+                a, b = (h0 + c + 1, h0 + p + 1) if k % 2 == 0 else (h0 + 1, h0 + p - c + 1)
                 if stop_cycle is not None:
-                    a, b = a, min(b, stop_cycle + 1)
+                    b = min(b, stop_cycle + 1)
                     if a >= b:
                         continue
                 if iv and iv[-1][1] == a:
@@ -159,12 +246,14 @@ class CoreModel:
             pole_ch[ph] = [(c, v) for c, v in lst if c < end]
         r.pole_edges = _merge(pole_ch, 3)
         # ---- gates: target per leg, piecewise constant; dead time and minimum pulse change at valleys ----
-        valid_from = r.valley[1] + 1 if n_periods >= 1 else end      # pole_valid_q
+        first = [x.load for x in r.updates if stop_cycle is None or x.load <= stop_cycle]
+        valid_from = first[0] + 1 if first else end          # pole_valid_q
+        n_val = len(r.dt)
         gate_ch: dict[int, list[tuple[int, int]]] = {}
         for ph in range(3):
-            times = {0, valid_from} | {c for c, _ in pole_ch[ph]} | set(r.valley[:n_periods])
+            times = {0, valid_from} | {c for c, _ in pole_ch[ph]} | set(r.valley[:n_val])
             if stop_cycle is not None:
-                times |= {t_end, stop_cycle}
+                times |= {r.valley[-1], stop_cycle}
             times = sorted(x for x in times if 0 <= x < end)
             pole_val = dict(pole_ch[ph])
             changes, pv = [], 0
@@ -177,12 +266,12 @@ class CoreModel:
                 else:
                     tgt = HI if pv else LO
                 k = bisect.bisect_right(r.valley, c) - 1
-                dt = r.dt[k] if k < len(r.dt) else dt_cur
-                mp = r.mp[k] if k < len(r.mp) else mp_cur
+                dt = r.dt[k] if k < n_val else dt_cur
+                mp = r.mp[k] if k < n_val else mp_cur
                 changes.append((c, tgt, dt, mp))
-            ev, self.legs[ph] = simulate_events(changes, end, (1 << fixed.DT_WIDTH) - 1, self.legs[ph])
-            gate_ch[ph] = [(c, h) for c, h, _ in ev if c < end]
-            gate_ch[ph + 3] = [(c, lo) for c, _, lo in ev if c < end]
+            ev_, self.legs[ph] = simulate_events(changes, end, (1 << fixed.DT_WIDTH) - 1, self.legs[ph])
+            gate_ch[ph] = [(c, h) for c, h, _ in ev_ if c < end]
+            gate_ch[ph + 3] = [(c, lo) for c, _, lo in ev_ if c < end]
         r.gate_edges = _merge(gate_ch, 6)
         return r
 

@@ -7,7 +7,12 @@ RTL against these with ``==``.  Formats (see README "Fixed-point formats"):
 * in-sector angle: unsigned PHASE_WIDTH-bit fraction of 60 deg (theta' = angle / 2**PHASE_WIDTH * 60 deg),
   sector 0..5 (= the seeds' sectors 1..6); the full angle is sector*60 deg + theta'.
 * frequency word: signed FREQ_WIDTH bits, added to the angle every clock; 1 LSB = f_clk / (6 * 2**PHASE_WIDTH) Hz.
-* modulation index m: UQ1.15 (M_ONE = 0x8000 = 1.0 = inscribed circle); larger inputs are clamped to M_ONE.
+* modulation index m: UQ1.15 (M_ONE = 0x8000 = 1.0 = inscribed circle), 0 .. 0xFFFF (1.99997); a vector
+  beyond the hexagon (m > 1 / cos(theta' - 30 deg), i.e. 2/sqrt(3) at the vertices) is clamped to its boundary.
+* voltage components v_alpha, v_beta, v_d, v_q: signed Q2.14 (V_ONE = 0x4000 = 1.0, same scale as m).
+* electrical angle theta (polar and dq modes): 16 bits over 360 deg.
+* dwell times T1, T2 (fractions of the carrier period spent in the two active vectors): UQ0.16 units,
+  D_ONE = 2**16 = the whole period (Minas eq. (4)/(5): T1 = m sin(60 deg - theta'), T2 = m sin(theta')).
 * sine ROM: UQ0.16, round(sin(i * 60deg / 256) * 2**16) for i = 0..256 (AVR495 sec. 6 uses a 0..60 deg table too).
 * period P: half carrier period in clocks (f_sw = f_clk / (2P)); compare values C in [0, P].
 """
@@ -22,7 +27,7 @@ PHASE_WIDTH = 34          # fraction bits of the in-sector angle accumulator
 FREQ_WIDTH = 24           # signed frequency word
 CNT_WIDTH = 16            # carrier / period / compare width
 DT_WIDTH = 10             # dead-time counter width (clocks)
-MIN_PERIOD = 32           # smallest accepted half period (clocks); smaller inputs are clamped
+MIN_PERIOD = 48           # smallest accepted half period (clocks); smaller inputs are clamped
 ROM_BITS = 8              # sine ROM: 2**ROM_BITS intervals over 0..60 deg (257 points)
 INTERP_BITS = 8           # linear-interpolation fraction bits
 ANGLE_BITS = ROM_BITS + INTERP_BITS   # angle bits the duty calculator uses (top of the accumulator)
@@ -30,7 +35,22 @@ SIN_BITS = 16             # UQ0.16 sine samples
 M_FRAC = 15               # m is UQ1.15
 M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
-DUTY_LATENCY = 12         # clocks from the duty calculator's start strobe to its done strobe
+DUTY_LATENCY = 33         # clocks from the duty calculator's start strobe to its done strobe
+MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
+SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (38)
+V_FRAC = 14               # v_alpha, v_beta, v_d, v_q are signed Q2.14
+V_ONE = 1 << V_FRAC
+D_ONE = 1 << SIN_BITS     # dwell time of a whole period
+T_CAP = D_ONE - 1         # dwell times enter the 16x16 multiplier: capped at 1 - 2^-16
+SQRT3_2 = int(round(math.sqrt(3) / 2 * (1 << SIN_BITS)))   # sqrt(3)/2, UQ0.16 (56756)
+
+# input modes (mode_i) -- README "Input modes"
+MODE_FREQ, MODE_VF, MODE_POLAR, MODE_AB, MODE_DQ = range(5)
+MODE_NAMES = ("freq", "vf", "polar", "alphabeta", "dq")
+# zero-vector placement (dpwm_i): continuous SVPWM, or discontinuous (bus-clamped) PWM
+DPWM_OFF, DPWM_MIN, DPWM_MAX, DPWM_60 = range(4)
+# update points (upd_i): new compare values at the valley, at the peak, or at both (double update)
+UPD_VALLEY, UPD_PEAK, UPD_BOTH = range(3)
 F_CLK_DEFAULT = 48e6      # default core clock (Hz)
 
 ROM_SIZE = 1 << ROM_BITS
@@ -54,13 +74,6 @@ def sine_table() -> list[int]:
 
 
 _ROM = sine_table()
-
-
-def clamp_m(m: int) -> tuple[int, bool]:
-    """Clamp a UQ1.15 modulation index to [0, 1.0]; returns (value, clamped)."""
-    if m < 0:
-        raise ValueError("m is unsigned")
-    return (M_ONE, True) if m > M_ONE else (m, False)
 
 
 FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)
@@ -121,29 +134,68 @@ def sines(a16: int) -> tuple[int, int]:
 
 
 def duties(a16: int, m: int) -> tuple[int, int]:
-    """d_a = m sin(60 deg - theta'), d_b = m sin(theta') (AVR495 sec. 4.2, Minas eq. (4)) in UQ0.16."""
+    """d_a = m sin(60 deg - theta'), d_b = m sin(theta') (AVR495 sec. 4.2, Minas eq. (4)) in UQ0.16.
+
+    These are the dwell times T1, T2 of the polar path; for m > 1 they may leave the hexagon."""
     sa, sb = sines(a16)
     rnd = 1 << (M_FRAC - 1)
     return (m * sa + rnd) >> M_FRAC, (m * sb + rnd) >> M_FRAC
 
 
-def compare_values(sector: int, a16: int, m: int, period: int) -> tuple[int, int, int]:
-    """Compare values (C_a, C_b, C_c) for one carrier period, AVR495 Table 4-3.
+def hex_clamp(t1: int, t2: int) -> tuple[int, int, bool]:
+    """Overmodulation: a vector outside the hexagon (T1 + T2 > 1) is clamped to its boundary keeping its angle.
 
-    C = P/2 * (1 + k) with k = +-d_a +- d_b per sector; a phase is high while the carrier is >= C
-    (counting up) / > C (counting down), so its high time is 2*(P - C) clocks.  Rounded to nearest.
-    """
-    da, db = duties(a16, m)
-    a8 = (da * period) >> (SIN_BITS - K_FRAC)
-    b8 = (db * period) >> (SIN_BITS - K_FRAC)
+    The angle inside the sector is set by the ratio T1 : T2, so the smaller of the two is rescaled,
+    q = floor(min * 2^16 / (T1 + T2)), and the larger becomes 1 - q: T0 = 1 - T1 - T2 is never negative
+    (Minas eq. (5), T0 = Ts - T1 - T2). Returns (T1, T2, saturated); both are capped at T_CAP (16 bits)."""
+    s = t1 + t2
+    sat = s > D_ONE
+    if sat:
+        q = (min(t1, t2) << SIN_BITS) // s
+        t1, t2 = (q, D_ONE - q) if t1 <= t2 else (D_ONE - q, q)
+    return min(t1, T_CAP), min(t2, T_CAP), sat
+
+
+def dwell_compare(sector: int, t1: int, t2: int, period: int) -> tuple[int, int, int]:
+    """Compare values (C_a, C_b, C_c) of one carrier period from the dwell times, AVR495 Table 4-3.
+
+    C = P/2 * (1 + k) with k = +-d_a +- d_b per sector (d_a = T1, d_b = T2); a phase is high while the
+    carrier is >= C (counting up) / > C (counting down), so its high time is 2*(P - C) clocks.  Rounded
+    to nearest; requires T1 + T2 <= 1 (hex_clamp)."""
+    a8 = (t1 * period) >> (SIN_BITS - K_FRAC)
+    b8 = (t2 * period) >> (SIN_BITS - K_FRAC)
     s, d = a8 + b8, a8 - b8
     ks = (s, -s, d, -d)
     base = (period + 1) << K_FRAC
     return tuple((base + ks[sel]) >> (K_FRAC + 1) for sel in SECTOR_SEL[sector])
 
 
+def dpwm_shift(c: tuple[int, int, int], period: int, dpwm: int) -> tuple[int, int, int]:
+    """Zero-vector placement. Continuous SVPWM (DPWM_OFF) splits the zero time equally between V0 (around the
+    valley) and V7 (around the peak), Minas eq. (6)/(7). The discontinuous modes move all of it into one:
+    DPWM_MIN  no V7: every C moves up by P - max(C), the latest phase stays low (clamped to the - rail);
+    DPWM_MAX  no V0: every C moves down by min(C), the earliest phase stays high (+ rail);
+    DPWM_60   per 60 deg the phase with the largest |reference| is clamped to its rail (DPWM1):
+              DPWM_MAX if min(C) + max(C) < P (the highest phase is the largest), else DPWM_MIN.
+    Only the common-mode part changes, so the line voltages and the Table I state order are kept."""
+    if dpwm == DPWM_OFF:
+        return c
+    lo, hi = min(c), max(c)
+    if dpwm == DPWM_MAX or (dpwm == DPWM_60 and lo + hi < period):
+        sh = -lo
+    else:
+        sh = period - hi
+    return tuple(x + sh for x in c)
+
+
+def compare_values(sector: int, a16: int, m: int, period: int, dpwm: int = DPWM_OFF) -> tuple[int, int, int]:
+    """Compare values (C_a, C_b, C_c) of the angle-driven path: sector + in-sector angle + m (any m <= 0xFFFF)."""
+    t1, t2, _ = hex_clamp(*duties(a16, m))
+    return dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm)
+
+
 def compare_values_np(sector, a16, m, period):
-    """Vectorised compare_values over numpy arrays (same integers); returns an (..., 3) int64 array."""
+    """Vectorised compare_values (DPWM_OFF) over numpy arrays (same integers); returns an (..., 3) int64 array."""
     sector, a16, m, period = np.broadcast_arrays(*(np.asarray(x, dtype=np.int64)
                                                    for x in (sector, a16, m, period)))
     rom = np.asarray(_ROM, dtype=np.int64)
@@ -154,6 +206,13 @@ def compare_values_np(sector, a16, m, period):
     sa = r2 - (((r2 - r3) * fr + half) >> INTERP_BITS)
     rnd = 1 << (M_FRAC - 1)
     da, db = (m * sa + rnd) >> M_FRAC, (m * sb + rnd) >> M_FRAC
+    tot = da + db                                                     # hex_clamp, vectorised
+    sat = tot > D_ONE
+    q = (np.minimum(da, db) << SIN_BITS) // np.maximum(tot, 1)
+    first = da <= db
+    da, db = (np.where(sat, np.where(first, q, D_ONE - q), da),
+              np.where(sat, np.where(first, D_ONE - q, q), db))
+    da, db = np.minimum(da, T_CAP), np.minimum(db, T_CAP)
     a8 = (da * period) >> (SIN_BITS - K_FRAC)
     b8 = (db * period) >> (SIN_BITS - K_FRAC)
     s, d = a8 + b8, a8 - b8
@@ -162,6 +221,105 @@ def compare_values_np(sector, a16, m, period):
     k = np.take_along_axis(ks, sel, axis=-1)
     base = (period + 1) << K_FRAC
     return (base[..., None] + k) >> (K_FRAC + 1)
+
+
+# ---- input modes: V/f law, polar, alpha-beta, dq + theta -----------------------------------------------
+
+def vf_m(freq: int, boost: int, slope: int, m_max: int) -> int:
+    """V/f law (AVR495 sec. 5: voltage proportional to frequency, with a boost at low frequency):
+    m = min(m_max, boost + |f| * slope). |f| enters as its top 16 bits, fa = |freq| >> (FREQ_WIDTH - 17)
+    (one unit = 2^(FREQ_WIDTH-17) frequency LSBs, 59.6 mHz at 48 MHz); slope is UQ8.8 m-LSBs per unit:
+    m = min(m_max, boost + ((fa * slope + 128) >> 8)). boost, m_max, m: UQ1.15. The law depends on |f| only,
+    so a reversal through zero passes through m = boost with the angle continuous: no step."""
+    fa = abs(freq) >> (FREQ_WIDTH - 17)
+    return min(m_max, boost + ((fa * slope + 128) >> 8))
+
+
+def theta_split(theta: int) -> tuple[int, int]:
+    """A 16-bit electrical angle (2^16 = 360 deg) as sector 0..5 and the 16-bit in-sector angle a16
+    (2^16 = 60 deg): 6 * theta = sector * 2^16 + a16, exact (no rounding)."""
+    t6 = 6 * (theta & 0xFFFF)
+    return t6 >> 16, t6 & 0xFFFF
+
+
+def _mul_v(v: int, k: int) -> int:
+    """Signed Q2.14 voltage times an unsigned UQ0.16 constant or sine, in dwell units (2^16 = 1): sign and
+    magnitude, rounded to nearest (ties away from zero), so -v gives exactly the negative result."""
+    p = (abs(v) * k + (1 << (V_FRAC - 1))) >> V_FRAC
+    return p if v >= 0 else -p
+
+
+def xyz_sector(x: int, y: int, z: int) -> tuple[int, int, int]:
+    """Sector and dwell times from the three projections X = v_beta, Y = (sqrt3 v_alpha + v_beta)/2,
+    Z = (v_beta - sqrt3 v_alpha)/2 (X = Y + Z), without trigonometry (Minas eq. (5) in all six sectors).
+
+    With q_k = |v| sin(phi - k 60 deg) = (X, Z, -Y, -X, -Z, Y)[k], sector s is the one with q_s >= 0 and
+    q_{s+1} < 0 (unique for v != 0 because q_k = q_{k-1} + q_{k+1}); then T2 = q_s and T1 = -q_{s+1},
+    both >= 0. The zero vector gives sector 0 and T1 = T2 = 0."""
+    q = (x, z, -y, -x, -z, y)
+    for s in range(6):
+        if q[s] >= 0 and q[(s + 1) % 6] < 0:
+            return s, -q[(s + 1) % 6], q[s]
+    return 0, 0, 0
+
+
+def ab_dwell(v_alpha: int, v_beta: int) -> tuple[int, int, int]:
+    """alpha-beta (stator frame) reference, Q2.14, to (sector, T1, T2): one product sqrt(3)/2 * v_alpha."""
+    a = _mul_v(v_alpha, SQRT3_2)          # sqrt(3)/2 v_alpha, dwell units
+    x = v_beta << (SIN_BITS - V_FRAC)     # v_beta in dwell units
+    h = v_beta << (SIN_BITS - V_FRAC - 1)  # v_beta / 2
+    return xyz_sector(x, a + h, h - a)
+
+
+def dq_trig(a16: int) -> tuple[int, int, int, int]:
+    """sin(60 - theta'), sin(theta'), cos(theta'), cos(60 - theta') from the 0..60 deg table alone.
+
+    With u = |theta' - 30 deg| and g = sin(60 - u), h = sin(u) (both from the table): sin(60 + u) = g + h
+    (sin(60+u) - sin(60-u) = 2 cos 60 sin u), so for theta' < 30: cos theta' = sin(60 + u) = g + h,
+    cos(60 - theta') = sin(60 - u) = g; for theta' >= 30 the two swap. g + h is capped at 1 - 2^-16."""
+    sa, sb = sines(a16)
+    u = abs(a16 - (1 << (ANGLE_BITS - 1)))
+    g, h = sines(u)
+    gh = min(g + h, T_CAP)
+    ct, c60 = (gh, g) if a16 < (1 << (ANGLE_BITS - 1)) else (g, gh)
+    return sa, sb, ct, c60
+
+
+def dq_dwell(theta: int, v_d: int, v_q: int) -> tuple[int, int, int]:
+    """dq reference + electrical angle to (sector, T1, T2): inverse Park evaluated in the frame of theta's own
+    sector. theta = s 60 deg + theta'; w = (v_d + j v_q) e^(j theta') has X = v_d sin theta' + v_q cos theta'
+    and Z = -v_d sin(60 - theta') + v_q cos(60 - theta'), Y = X - Z. The vector v = w e^(j s 60 deg) has the same
+    dwell times as w, its sector is (sector(w) + s) mod 6 (q_k(v) = q_{k-s}(w))."""
+    s, a16 = theta_split(theta)
+    sa, sb, ct, c60 = dq_trig(a16)
+    x = _mul_v(v_d, sb) + _mul_v(v_q, ct)
+    z = _mul_v(v_q, c60) - _mul_v(v_d, sa)
+    sw, t1, t2 = xyz_sector(x, x - z, z)
+    return (sw + s) % 6, t1, t2
+
+
+def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int = 0, m: int = 0,
+             theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0, vf_slope: int = 0,
+             vf_mmax: int = 0, dpwm: int = DPWM_OFF) -> tuple[int, tuple[int, int, int], bool, bool]:
+    """The whole compute path for one update: reference (any mode) -> sector, dwell times -> hexagon clamp
+    -> compare values (Table 4-3) -> zero-vector placement. Returns (sector, (C_a, C_b, C_c), sat, cfg_err).
+
+    acc_sector / acc_a16: the phase accumulator (freq and vf modes). An unknown mode gives the zero vector
+    (T1 = T2 = 0, all phases 50 %) and cfg_err. The minimum-pulse rule (snap_min_pulse) comes after this."""
+    err = False
+    if mode in (MODE_FREQ, MODE_VF, MODE_POLAR):
+        if mode == MODE_VF:
+            m = vf_m(freq, vf_boost, vf_slope, vf_mmax)
+        sector, a16 = (acc_sector, acc_a16) if mode != MODE_POLAR else theta_split(theta)
+        t1, t2 = duties(a16, m)
+    elif mode == MODE_AB:
+        sector, t1, t2 = ab_dwell(v1, v2)
+    elif mode == MODE_DQ:
+        sector, t1, t2 = dq_dwell(theta, v1, v2)
+    else:
+        sector, t1, t2, err = 0, 0, 0, True
+    t1, t2, sat = hex_clamp(t1, t2)
+    return sector, dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm), sat, err
 
 
 def angle_step(sector: int, angle: int, step: int, clocks: int) -> tuple[int, int]:

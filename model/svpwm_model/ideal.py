@@ -58,10 +58,14 @@ def ideal_duties(theta, m) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     d_a = m sin(pi/3 - theta'), d_b = m sin(theta')  -- Minas eq. (4) (d_x, d_y with ma = m),
     AVR495 sec. 4.2 (unified d_a, d_b), Verma eqs. (29)-(30) with t/T0 and m = 2/sqrt3 * m_i.
     d_a weights the vector at sector*60 deg, d_b the one at (sector+1)*60 deg; d_0 = 1 - d_a - d_b.
+    Overmodulation: a vector outside the hexagon (d_a + d_b > 1, possible for m > 1) is scaled back onto
+    its boundary keeping its angle, d_a, d_b -> d_a, d_b / (d_a + d_b), so d_0 = 0 (never negative).
     """
     sector, tp = split_angle(theta)
     m = np.asarray(m, dtype=np.float64)
-    return sector, m * np.sin(SECTOR_RAD - tp), m * np.sin(tp)
+    da, db = m * np.sin(SECTOR_RAD - tp), m * np.sin(tp)
+    s = np.maximum(da + db, 1.0)
+    return sector, da / s, db / s
 
 
 def _k(theta, m) -> np.ndarray:

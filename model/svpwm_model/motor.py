@@ -260,24 +260,37 @@ class InverterMotor:
 # ---- V/f law and speed loop ----------------------------------------------------------------------------
 @dataclass
 class VfLaw:
-    """AVR495 constant V/f with boost: m = min(m_max, m_boost + (m_rated - m_boost) |f| / f_rated).
+    """Constant V/f with boost (AVR495 sec. 6.2 / Fig. 6-1), in the form of the core's V/f hardware mode:
 
-    m_boost = 0.06: 0.06 * 360 V / sqrt3 = 12.5 V phase peak ~ R_s * sqrt2 * 2.5 A, i.e. the stator
-    resistance drop at about the rated magnetising current, so the flux is kept near rated at low f
-    (AVR495 sec. 6.2: near f = 0 "the stator voltage magnitude is equal to the boost voltage")."""
-    m_boost: float = 0.06
-    m_rated: float = 0.9
-    f_rated: float = 50.0
+        m = min(m_max, boost + slope * |f|)
+
+    Defaults: m = 0.9 at 50 Hz (Udc = 360 V: 230 V rms line, the rated point) and boost = 0.06:
+    0.06 * 360 V / sqrt3 = 12.5 V phase peak ~ R_s * sqrt2 * 2.5 A, the stator resistance drop at about the
+    magnetising current, so the flux stays near rated at low f (AVR495 sec. 6: near f = 0 "the stator
+    voltage magnitude is equal to the boost voltage").  The three named values are what the RTL's V/f mode
+    takes; ``from_rated`` gives them from a rated point."""
+    boost: float = 0.06
+    slope: float = (0.9 - 0.06) / 50.0       # per Hz
     m_max: float = 1.0
 
+    @classmethod
+    def from_rated(cls, boost: float = 0.06, m_rated: float = 0.9, f_rated: float = 50.0, m_max: float = 1.0):
+        return cls(boost=boost, slope=(m_rated - boost) / f_rated, m_max=m_max)
+
     def m(self, f_hz: float) -> float:
-        return min(self.m_max, self.m_boost + (self.m_rated - self.m_boost) * abs(f_hz) / self.f_rated)
+        return min(self.m_max, self.boost + self.slope * abs(f_hz))
 
 
 @dataclass
 class PISpeed:
-    """PI speed controller whose output is the stator frequency (AVR495 Fig. 4-8): f = kp e + ki int e dt,
-    e = n_ref - n (rpm), f in Hz, clamped to +-f_max with a clamped integrator (anti-windup)."""
+    """AVR495's structure (Fig. 4-8): the PI output *is* the stator frequency, f = kp e + ki int e dt,
+    e = n_ref - n (rpm), f in Hz, clamped to +-f_max with a clamped integrator.
+
+    Kept for comparison only: the frequency is not tied to the rotor speed, so the machine runs as an
+    open-loop V/f drive around the operating point, whose electromechanical mode at light load is poorly
+    damped (``vf_modes``: 13.7 Hz, zeta = 0.08 at 700 rpm); the proportional path lowers the damping
+    further (zeta = 0.03 with these gains) and with the inverter's dead time it becomes a sustained
+    ~13 Hz speed oscillation (the demo before the slip-regulated loop)."""
     kp: float = 0.01           # Hz per rpm
     ki: float = 0.3            # Hz per (rpm s)
     f_max: float = 60.0
@@ -289,9 +302,63 @@ class PISpeed:
         return min(self.f_max, max(-self.f_max, self.integ + self.kp * e))
 
 
+@dataclass
+class SlipPISpeed:
+    """Slip-regulated speed control: f = p n / 60 + f_slip, f_slip = PI(n_ref - n) limited to +-f_slip_max.
+
+    Structure: the textbook "speed control with slip regulation" of scalar (V/f) drives with a speed sensor
+    (Bose, Modern Power Electronics and AC Drives, 2002, ch. 8, scalar control), not AVR495's Fig. 4-8:
+    the stator frequency is the measured electrical rotor speed plus a slip command.
+    Below breakdown slip the torque is ~ proportional to the slip frequency (T ~ 3/2 p psi_r^2 w_slip / R_r,
+    2.1 N m per Hz here), so the PI sees a torque actuator on an inertia instead of AVR495's
+    frequency-to-speed path (Fig. 4-8, ``PISpeed``) that leaves the poorly damped open-loop V/f mode in the
+    loop.  Small-signal (``closed_loop_modes``), least damped pair: 10.5 Hz, zeta = 0.29 at +-700 rpm no
+    load; >= 0.22 from 100 to 700 rpm, 0 to 2.5 N m (AVR495 structure: 14.6 Hz, zeta = 0.03).
+
+    * The slip limit is a torque (and current) limit: 1.5 Hz ~ 3 N m ~ 0.6x rated torque (breakdown slip
+      is ~16 Hz at 50 Hz); stator current <= 5.2 A peak (1.2x rated) in the +-700 rpm steps.  Larger limits
+      (2-3 Hz) reverse faster but overshoot more: at low frequency the flux (boost, no-load overflux) and
+      the torque lag the slip command by the rotor time constant, so the speed runs past the reference
+      when the slip is taken back (averaged model: 3 Hz -> 40-70 rpm overshoot).
+    * Gains: plant f_slip -> n ~ K / s, K = 2.1 N m/Hz * 60/(2 pi) / J ~ 4000 rpm/(Hz s) at 700 rpm:
+      kp = 0.012 Hz/rpm gives ~50 rad/s crossover (rotor transient time constant sigma L_r / R_r = 9 ms:
+      24 deg lag); the PI zero at ki / kp = 5 rad/s: the integrator takes friction and load, a faster zero
+      integrates the approach error and overshoots (ki = 10 kp: 15-17 rpm), a slower one leaves a 1 N m
+      load error outside +-2 % for > 0.8 s (ki = 2 kp).
+    * Anti-windup: conditional integration (the integrator holds while the output is limited and the error
+      would drive it further), integrator also bounded to +-f_slip_max; leaving the limit the P term takes
+      over without a wound-up integral.
+    * ``f_max``: the stator frequency limit (the V/f law reaches m_max above it)."""
+    kp: float = 0.012          # Hz of slip per rpm
+    ki: float = 0.06           # Hz of slip per (rpm s)
+    f_slip_max: float = 1.5    # Hz
+    f_max: float = 60.0        # Hz
+    p: int = 2                 # pole pairs (the electrical rotor speed is p n / 60 Hz)
+    integ: float = 0.0
+    f_slip: float = 0.0        # last slip command (Hz), for the log
+
+    def step(self, n_ref: float, n: float, dt: float) -> float:
+        e = n_ref - n
+        lim = self.f_slip_max
+        u = self.integ + self.kp * e
+        if abs(u) < lim or (u > 0) != (e > 0):          # not limited, or the error pulls it back: integrate
+            self.integ = min(lim, max(-lim, self.integ + self.ki * e * dt))
+            u = self.integ + self.kp * e
+        self.f_slip = min(lim, max(-lim, u))
+        return min(self.f_max, max(-self.f_max, self.p * n / 60.0 + self.f_slip))
+
+
+def make_speed_ctrl(kind: str = "slip", **kw):
+    """Speed controller by name: "slip" -> SlipPISpeed (default, the demo's loop), "avr495" -> PISpeed."""
+    return {"slip": SlipPISpeed, "avr495": PISpeed}[kind](**kw)
+
+
 def speed_profile(t: float) -> float:
     """Speed reference (rpm): +700 rpm from t = 0 (start at rest), -700 rpm from t = 0.8 s (AVR495 Fig. 6-1)."""
     return 700.0 if t < 0.8 else -700.0
+
+
+STEP_TIMES = (0.0, 0.8)           # s, the reference steps of speed_profile
 
 
 @dataclass
@@ -312,29 +379,37 @@ class LoopLog:
 
 
 class SpeedLoop:
-    """V/f + PI speed loop evaluated at carrier valleys: ``update(t_cycles, motor)`` returns (freq_word, m_word).
+    """V/f + speed controller evaluated at carrier valleys: ``update(t_cycles, motor)`` returns (freq_word, m_word).
 
-    Used identically by the RTL co-simulation (tb/cocotb/demo/demo_runs.py) and by the pure-model loop
-    below. ``every``: the controller runs every ``every`` carrier periods and holds its output in between."""
+    Used identically by the RTL co-simulation (tb/cocotb/demo/demo_runs.py), the switched model loop
+    (``run_speed_loop_model``) and the averaged-inverter loop (``run_speed_loop_averaged``).  ``ctrl``: any
+    object with ``step(n_ref, n, dt) -> f_hz`` (default ``SlipPISpeed``; ``PISpeed`` is AVR495's structure);
+    the V/f law maps f to m.  ``every``: the controller runs every ``every`` carrier periods and holds its
+    output in between.  The speed is read once per update, at the valley (no filter, no aliasing: the loop
+    rate, 15.6 kHz, is > 1000x the mechanical bandwidth)."""
 
-    def __init__(self, vf: VfLaw | None = None, pi: PISpeed | None = None, profile=speed_profile,
-                 f_clk: float = F_CLK, every: int = 1):
-        self.vf, self.pi = vf or VfLaw(), pi or PISpeed()
+    def __init__(self, vf: VfLaw | None = None, ctrl=None, profile=speed_profile,
+                 f_clk: float = F_CLK, every: int = 1, pi=None):
+        self.vf = vf or VfLaw()
+        self.ctrl = ctrl or pi or SlipPISpeed()
+        self.pi = self.ctrl                      # old name
         self.profile, self.f_clk, self.every = profile, f_clk, every
         self.log = LoopLog()
         self._k = 0
         self._t_last = None
         self._out = (0, 0)
+        self.f_m = (0.0, 0.0)                    # last (f, m) before word rounding
 
-    def update(self, t_cycles: int, motor: InverterMotor) -> tuple[int, int]:
+    def update(self, t_cycles: int, motor) -> tuple[int, int]:
         from . import fixed
         t = t_cycles / self.f_clk
         if self._k % self.every == 0:
             n = motor.speed_rpm()
             n_ref = self.profile(t)
             dt = 0.0 if self._t_last is None else t - self._t_last
-            f = self.pi.step(n_ref, n, dt)
+            f = self.ctrl.step(n_ref, n, dt)
             m = self.vf.m(f)
+            self.f_m = (f, m)
             self._out = (fixed.freq_word(f, self.f_clk), fixed.m_word(m))
             self._t_last = t
             lg = self.log
@@ -347,6 +422,159 @@ class SpeedLoop:
                 getattr(lg, k).append(v)
         self._k += 1
         return self._out
+
+
+# ---- averaged (ideal sinusoidal) inverter, small-signal analysis, step metrics ---------------------------
+def _dq_sync(mp: MotorParams, v: float, ws: float, ps: complex, pr: complex, wm: float, t_load: float):
+    """The dq model of InverterMotor in the frame of the voltage vector (rotating at ws, v real)."""
+    D = mp.Ls * mp.Lr - mp.Lm * mp.Lm
+    i_s = (mp.Lr * ps - mp.Lm * pr) / D
+    i_r = (mp.Ls * pr - mp.Lm * ps) / D
+    dps = v - mp.Rs * i_s - 1j * ws * ps
+    dpr = -mp.Rr * i_r - 1j * (ws - mp.p * wm) * pr
+    te = 1.5 * mp.p * (ps.real * i_s.imag - ps.imag * i_s.real)
+    dwm = (te - mp.B * wm - mp.Tc * math.tanh(wm) - t_load) / mp.J
+    return dps, dpr, dwm
+
+
+class AveragedMotor:
+    """The same machine on an ideal sinusoidal (averaged) inverter: v = m Udc / sqrt3 at the commanded f,
+    no PWM ripple, no dead time.  Integrated (RK4) in the voltage vector's frame, where the states are slow
+    (|lambda h| <= 0.03 at h = 64 us), so one step per carrier period suffices.  Same interface as
+    InverterMotor for SpeedLoop (speed_rpm, current, mp, pr)."""
+
+    def __init__(self, mp: MotorParams = MotorParams(), udc: float = UDC, t_load: float = 0.0):
+        self.mp, self.udc, self.t_load = mp, udc, t_load
+        self.ps, self.pr, self.wm = 0j, 0j, 0.0
+
+    def speed_rpm(self) -> float:
+        return self.wm * 60 / (2 * math.pi)
+
+    def current(self) -> complex:
+        mp = self.mp
+        return (mp.Lr * self.ps - mp.Lm * self.pr) / (mp.Ls * mp.Lr - mp.Lm ** 2)
+
+    def step(self, f_hz: float, m: float, h: float) -> None:
+        mp, tl = self.mp, self.t_load
+        v, ws = m * self.udc / math.sqrt(3), 2 * math.pi * f_hz
+        ps, pr, wm = self.ps, self.pr, self.wm
+        k1 = _dq_sync(mp, v, ws, ps, pr, wm, tl)
+        k2 = _dq_sync(mp, v, ws, ps + 0.5 * h * k1[0], pr + 0.5 * h * k1[1], wm + 0.5 * h * k1[2], tl)
+        k3 = _dq_sync(mp, v, ws, ps + 0.5 * h * k2[0], pr + 0.5 * h * k2[1], wm + 0.5 * h * k2[2], tl)
+        k4 = _dq_sync(mp, v, ws, ps + h * k3[0], pr + h * k3[1], wm + h * k3[2], tl)
+        self.ps = ps + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0])
+        self.pr = pr + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])
+        self.wm = wm + h / 6 * (k1[2] + 2 * k2[2] + 2 * k3[2] + k4[2])
+
+
+def run_speed_loop_averaged(t_end_s: float, loop: SpeedLoop | None = None, motor: AveragedMotor | None = None,
+                            period: int = 1536, delay: int = 1):
+    """The speed loop on the averaged inverter, updated every carrier period (2 * period clocks) like the
+    RTL loop; the command computed at a valley acts ``delay`` periods later (the core samples its inputs at
+    the next peak and uses them from the following period).  2 s of motor time in ~1 s.  Returns (loop, motor)."""
+    loop = loop or SpeedLoop()
+    motor = motor or AveragedMotor()
+    h = 2 * period / loop.f_clk
+    q = deque([(0.0, 0.0)] * delay)
+    for k in range(int(round(t_end_s / h))):
+        loop.update(2 * period * k, motor)
+        q.append(loop.f_m)
+        f, m = q.popleft()
+        motor.step(f, m, h)
+    return loop, motor
+
+
+def _jacobian(fun, x, eps=1e-7):
+    J = np.zeros((len(x), len(x)))
+    for k in range(len(x)):
+        d = np.zeros(len(x))
+        d[k] = eps * max(1.0, abs(x[k]))
+        J[:, k] = (fun(x + d) - fun(x - d)) / (2 * d[k])
+    return J
+
+
+def _newton(fun, x, it=60):
+    for _ in range(it):
+        dx = np.linalg.solve(_jacobian(fun, x), -fun(x))
+        x = x + dx
+        if np.max(np.abs(dx)) < 1e-11:
+            break
+    return x
+
+
+def closed_loop_modes(ctrl, vf: VfLaw | None = None, n_ref: float = 700.0, t_load: float = 0.0,
+                      mp: MotorParams = MotorParams()) -> np.ndarray:
+    """Eigenvalues (1/s) of the machine + V/f law + speed controller linearised at the steady state for
+    ``n_ref`` (continuous time; the 64 us loop period and its delay are neglected: < 1 deg at 15 Hz).
+    ``ctrl``: ``PISpeed`` (f = PI), ``SlipPISpeed`` (f = p n / 60 + PI, unsaturated), or None: open-loop
+    V/f at the synchronous frequency of n_ref (the machine's own modes).  States: psi_s, psi_r (voltage
+    frame, re/im), w_m, and the PI integrator."""
+    vf = vf or VfLaw()
+    rpm = 60 / (2 * math.pi)
+    f_sync = mp.p * n_ref / 60
+
+    def freq(z):
+        n = z[4] * rpm
+        if ctrl is None:
+            return f_sync
+        pi = z[5] + ctrl.kp * (n_ref - n)
+        return pi + (mp.p * n / 60 if isinstance(ctrl, SlipPISpeed) else 0.0)
+
+    def G(z):
+        f = freq(z)
+        dps, dpr, dwm = _dq_sync(mp, vf.m(f) * UDC / math.sqrt(3), 2 * math.pi * f,
+                                 complex(z[0], z[1]), complex(z[2], z[3]), z[4], t_load)
+        out = [dps.real, dps.imag, dpr.real, dpr.imag, dwm]
+        if ctrl is not None:
+            out.append(ctrl.ki * (n_ref - z[4] * rpm))
+        return np.array(out)
+
+    ps, pr = steady_state_fluxes(mp, f_sync, vf.m(f_sync) * UDC / math.sqrt(3), 1e-4)
+    z0 = [ps.real, ps.imag, pr.real, pr.imag, n_ref / rpm]
+    if ctrl is not None:
+        z0.append(0.0 if isinstance(ctrl, SlipPISpeed) else f_sync)
+    z = _newton(G, np.array(z0))
+    return np.linalg.eigvals(_jacobian(G, z))
+
+
+def least_damped(ev) -> tuple[float, float]:
+    """(frequency Hz, damping ratio) of the least damped oscillatory eigenvalue pair."""
+    osc = [e for e in ev if e.imag > 1e-6]
+    e = min(osc, key=lambda e: -e.real / abs(e))
+    return e.imag / (2 * math.pi), -e.real / abs(e)
+
+
+def step_metrics(t, n, n_ref, steps=STEP_TIMES, band: float = 0.02, tail: float = 0.2) -> list[dict]:
+    """Per reference step (from each step time to the next or the end): reference, settling time into
+    +-band * |reference| (first time after which the speed stays inside), overshoot beyond the reference
+    (rpm, in the direction of the step), peak-to-peak ripple and mean error over the last ``tail`` seconds,
+    and the time to first reach the reference band."""
+    t, n, n_ref = np.asarray(t), np.asarray(n), np.asarray(n_ref)
+    out = []
+    for k, t_a in enumerate(steps):
+        t_b = steps[k + 1] if k + 1 < len(steps) else t[-1] + 1e-12
+        sel = (t >= t_a) & (t < t_b)
+        tt, nn = t[sel], n[sel]
+        target = float(n_ref[sel][-1])
+        start = float(n[np.searchsorted(t, t_a)])
+        tol = band * abs(target)
+        inside = np.abs(nn - target) <= tol
+        out_idx = np.where(~inside)[0]
+        if not len(out_idx):
+            settle = 0.0
+        elif out_idx[-1] + 1 < len(tt):
+            settle = float(tt[out_idx[-1] + 1] - t_a)
+        else:
+            settle = None
+        reach = float(tt[np.argmax(inside)] - t_a) if inside.any() else None
+        sgn = 1.0 if target >= start else -1.0
+        last = tt >= tt[-1] - tail
+        out.append(dict(step_at_s=float(t_a), n_ref_rpm=target, band_rpm=tol,
+                        settle_s=settle, reach_s=reach,
+                        overshoot_rpm=float(max(0.0, np.max(sgn * (nn - target)))),
+                        ripple_pp_rpm=float(np.ptp(nn[last])), mean_error_rpm=float(np.mean(nn[last]) - target),
+                        speed_at_end_rpm=float(nn[-1])))
+    return out
 
 
 def run_speed_loop_model(t_end_s: float, period: int = 1536, loop: SpeedLoop | None = None,

@@ -3,8 +3,9 @@
 
 Valleys 2P apart; period 0 has no compare values and the gates stay off; each phase is high for exactly
 2(P - C) clocks per period, symmetric about the peak (+1 clock for the registered pole); the angle
-after N periods is fixed.angle_step of the same clocks; m and period clamps; a stop turns the gates off
-on the next clock; the line-voltage fundamental of the pole edges is the commanded m within 0.1 %.
+after N periods is fixed.angle_step of the same clocks and each update uses the angle SAMPLE_LEAD clocks
+before its load point; period clamp; a stop turns the gates off on the next clock; the line-voltage
+fundamental of the pole edges is the commanded m within 0.1 %.
 """
 from __future__ import annotations
 
@@ -95,37 +96,42 @@ def test_pole_intervals_centred_on_peak():
 
 def test_accumulator_equals_angle_step():
     # constant frequency: the angle after N periods = angle_step over all their clocks
-    for f, p, n in ((FW(50.0), 1536, 40), (FW(-777.0), 100, 97), (-(1 << 23), 32, 500), ((1 << 23) - 1, 33, 500)):
+    for f, p, n in ((FW(50.0), 1536, 40), (FW(-777.0), 100, 97), (-(1 << 23), 48, 500), ((1 << 23) - 1, 49, 500)):
         u = Inputs(f, MW(0.5), p, 0)
         mdl = CoreModel(sector=4, angle=(1 << fixed.PHASE_WIDTH) - 5)
         r = mdl.run(u, [u] * n, n)
         assert r.valley[-1] == 2 * p * n
         f_used = fixed.clamp_freq(f)[0]      # -2^23 is clamped to -(2^23 - 1): a symmetric range
         assert mdl.theta == advance(full_angle(4, (1 << fixed.PHASE_WIDTH) - 5), f_used, 2 * p * n)
-    # changing frequency and period: idle.freq until the peak of period 0, u_n.freq from peak n on
+    # changing frequency and period: idle.freq until the first sample, SAMPLE_LEAD clocks before valley 1;
+    # then each sample's frequency word from that sample on
     mdl = CoreModel()
     idle = Inputs(FW(10.0), 0, 48, 0)
     r = mdl.run(idle, SCHED, len(SCHED))
-    theta = advance(0, idle.freq, r.period[0])                 # valley 0 .. peak 0
+    theta, t_prev, f = 0, 0, idle.freq
     for n in range(len(SCHED)):
+        s = r.valley[n + 1] - fixed.SAMPLE_LEAD
+        theta = advance(theta, f, s - t_prev)
         if n + 1 < len(SCHED):
-            assert r.theta[n + 1] == theta             # sampled at peak n for the values of period n + 1
-        nxt = r.period[n + 1] if n + 1 < len(SCHED) else 0
-        theta = advance(theta, SCHED[n].freq, r.period[n] + nxt)
-    assert mdl.theta == theta
+            assert r.theta[n + 1] == theta             # sampled SAMPLE_LEAD before valley n + 1
+        t_prev, f = s, SCHED[n].freq
+    assert mdl.theta == advance(theta, f, r.valley[-1] - t_prev)
 
 
-def test_clamps():
+def test_period_clamp_and_overmodulation():
+    """A too short period is lengthened to MIN_PERIOD; m beyond 1.0 is accepted and clamped to the hexagon."""
     u = Inputs(FW(200.0), 0xFFFF, 5, 2)
-    r = CoreModel().run(u, [u, Inputs(FW(200.0), 0x8001, 0, 2), Inputs(FW(200.0), 0x8000, 31, 2),
-                            Inputs(FW(200.0), 0x7FFF, 32, 2)], 4)
-    assert r.period == [32, 32, 32, 32] and r.m[1:] == [0x8000, 0x8000, 0x8000]
-    assert [b - a for a, b in zip(r.valley, r.valley[1:])] == [64] * 4
+    r = CoreModel().run(u, [u, Inputs(FW(200.0), 0x8001, 0, 2), Inputs(FW(200.0), 0x8000, 47, 2),
+                            Inputs(FW(200.0), 0x7FFF, 48, 2)], 4)
+    lo = fixed.MIN_PERIOD
+    assert r.period == [lo] * 4 and r.m[1:] == [0xFFFF, 0x8001, 0x8000]
+    assert [b - a for a, b in zip(r.valley, r.valley[1:])] == [2 * lo] * 4
     a16 = lambda th: (th & ((1 << fixed.PHASE_WIDTH) - 1)) >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
     for n in (1, 2, 3):
-        assert r.cmp[n] == fixed.compare_values(r.sector[n], a16(r.theta[n]), fixed.M_ONE, 32)
-    assert fixed.clamp_m(0x8001) == (0x8000, True) and fixed.clamp_m(0x8000) == (0x8000, False)
-    assert fixed.clamp_period(31) == (32, True) and fixed.clamp_period(32) == (32, False)
+        assert r.cmp[n] == tuple(fixed.snap_min_pulse(c, lo, 2) for c in
+                                 fixed.compare_values(r.sector[n], a16(r.theta[n]), r.m[n], lo))
+    assert r.updates[0].sat and not r.updates[2].sat and not r.updates[3].sat
+    assert fixed.clamp_period(lo - 1) == (lo, True) and fixed.clamp_period(lo) == (lo, False)
 
 
 @pytest.mark.parametrize("stop", [0, 1, 20, 32, 63, 64])

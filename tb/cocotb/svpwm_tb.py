@@ -25,6 +25,7 @@ class RtlRun:
     gate_edges: list[tuple[int, int]] = field(default_factory=list)
     valley: list[int] = field(default_factory=list)
     cmp: list[tuple[int, int, int]] = field(default_factory=list)
+    cmp_peak: list[tuple[int, int, int]] = field(default_factory=list)
     sector: list[int] = field(default_factory=list)
     period: list[int] = field(default_factory=list)
     running: list[int] = field(default_factory=list)
@@ -52,6 +53,16 @@ class CoreTB:
         d.period_i.value = u.period
         d.dt_i.value = u.dt
         d.mp_i.value = u.mp
+        d.mode_i.value = u.mode
+        d.theta_i.value = u.theta & 0xFFFF
+        d.v1_i.value = u.v1
+        d.v2_i.value = u.v2
+        d.vf_boost_i.value = u.vf_boost
+        d.vf_slope_i.value = u.vf_slope
+        d.vf_mmax_i.value = u.vf_mmax
+        d.dpwm_i.value = u.dpwm
+        d.upd_i.value = u.upd
+        d.presc_i.value = u.presc
 
     def set_safety(self, fault=0, fault_clear=0, cbc=0, safe_lo=0, pol=0, lock=0) -> None:
         d = self.dut
@@ -61,6 +72,9 @@ class CoreTB:
         d.safe_lo_i.value = safe_lo
         d.pol_i.value = pol
         d.lock_i.value = lock
+        d.adc_trig_i.value = 0
+        d.sync_en_i.value = 0
+        d.sync_i.value = 0
 
     async def reset(self, idle: Inputs = Inputs()) -> None:
         d = self.dut
@@ -82,14 +96,27 @@ class CoreTB:
             await self.dut.mon.value_change
             out.append((self._cycle(), int(self.dut.mon.value)))
 
+    def _read_cmp(self) -> tuple[int, int, int]:
+        w = self.cmp_width
+        c = int(self.dut.cmp_o.value)
+        return tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3))
+
     async def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
-                  stop: int | None = None) -> tuple[RtlRun, Run]:
-        """Run the RTL and the model the same way; returns (rtl, model) results."""
+                  stop: int | None = None,
+                  peak_inputs: Sequence[Inputs] | Callable[[int], Inputs] | None = None) -> tuple[RtlRun, Run]:
+        """Run the RTL and the model the same way; returns (rtl, model) results.
+
+        inputs(n) are on the ports from valley n (from peak n if peak_inputs is given, which then holds
+        the inputs from valley n to peak n); see svpwm_model.core."""
         d = self.dut
         get = inputs if callable(inputs) else (lambda n: inputs[n])
-        assert get(0) == idle, "inputs(0) must equal the idle inputs (period 0 samples them)"
+        pget = None if peak_inputs is None else (peak_inputs if callable(peak_inputs) else (lambda n: peak_inputs[n]))
+        if pget is None:
+            assert get(0) == idle, "inputs(0) must equal the idle inputs (period 0 samples them)"
+        else:
+            assert pget(0) == idle, "peak_inputs(0) must equal the idle inputs"
         self.model.idle(self.idle_cycles)
-        exp = self.model.run(idle, inputs, n_periods, stop)
+        exp = self.model.run(idle, inputs, n_periods, stop, peak_inputs)
         self.set_inputs(idle)
         await RisingEdge(d.clk)
         d.en_i.value = 1
@@ -98,20 +125,24 @@ class CoreTB:
         task = cocotb.start_soon(self._monitor(mon))
         await FallingEdge(d.clk)                    # valley_o of cycle 0 is already up
         rtl = RtlRun(valley=[0])
-        for n in range(1, n_periods + 1):
+        for n in range(0, n_periods):
+            await RisingEdge(d.peak_o)               # peak of period n
+            await ReadOnly()
+            rtl.cmp_peak.append(self._read_cmp() if int(d.running_o.value) else None)
+            if pget is not None:
+                await FallingEdge(d.clk)
+                self.set_inputs(get(n))
             await RisingEdge(d.valley_o)
             await ReadOnly()
             rtl.valley.append(self._cycle())
-            if n == n_periods:
+            if n == n_periods - 1:
                 break
-            w = self.cmp_width
-            c = int(d.cmp_o.value)
-            rtl.cmp.append(tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3)))
+            rtl.cmp.append(self._read_cmp())
             rtl.sector.append(int(d.sector_o.value))
             rtl.period.append(int(d.period_o.value))
             rtl.running.append(int(d.running_o.value))
             await FallingEdge(d.clk)
-            self.set_inputs(get(n))
+            self.set_inputs(get(n + 1) if pget is None else pget(n + 1))
         if stop is not None:
             if stop == 0:
                 await FallingEdge(d.clk)            # still in cycle t_N
@@ -139,6 +170,7 @@ class CoreTB:
         assert rtl.valley == exp.valley, _diff("valley cycles", rtl.valley, exp.valley)
         assert rtl.period == exp.period[1:], _diff("active period", rtl.period, exp.period[1:])
         assert rtl.cmp == exp.cmp[1:], _diff("compare values", rtl.cmp, exp.cmp[1:])
+        assert rtl.cmp_peak == exp.cmp_peak, _diff("compare values at the peaks", rtl.cmp_peak, exp.cmp_peak)
         assert rtl.sector == exp.sector[1:], _diff("sector", rtl.sector, exp.sector[1:])
         assert all(rtl.running), "running_o low in a modulated period"
         assert rtl.pole_edges == exp.pole_edges, _diff("pole edges", rtl.pole_edges, exp.pole_edges)

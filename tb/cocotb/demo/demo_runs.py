@@ -213,8 +213,10 @@ async def run_point(dut, pt: dict) -> None:
 
 async def run_speed_loop(dut, pt: dict) -> None:
     """Closed loop with the RTL in it: motor (svpwm_model.motor, driven by the RTL's gate edges with dead
-    time resolved by the current sign) + V/f + PI speed loop, evaluated at every carrier valley from the
-    edges the RTL has produced so far; the result sets the frequency and m inputs sampled at the next peak.
+    time resolved by the current sign) + V/f + speed controller (``ctrl``: "slip" = SlipPISpeed, the
+    slip-regulated loop, default; "avr495" = PISpeed; ``ctrl_args``: its parameters), evaluated at every
+    carrier valley from the edges the RTL has produced so far; the result sets the frequency and m inputs
+    sampled at the next peak.
     Afterwards the golden model replays the recorded inputs and must equal the RTL on every edge."""
     import sys
 
@@ -231,7 +233,7 @@ async def run_speed_loop(dut, pt: dict) -> None:
     d = dut
     tb = CoreTB(dut)
     mot = M.InverterMotor(gates=dt > 0, trace=True, trace_every=int(pt.get("trace_every", 4)))
-    loop = M.SpeedLoop(pi=M.PISpeed(kp=pt.get("kp", M.PISpeed.kp), ki=pt.get("ki", M.PISpeed.ki)),
+    loop = M.SpeedLoop(ctrl=M.make_speed_ctrl(pt.get("ctrl", "slip"), **pt.get("ctrl_args", {})),
                        every=int(pt.get("every", 1)))
     fw, mw = loop.update(0, mot)
     idle = Inputs(freq=fw, m=mw, period=P, dt=dt)

@@ -141,19 +141,19 @@ async def period_and_dead_time_change(dut):
 
 @cocotb.test()
 async def clamps_and_disable(dut):
-    """m above 1.0 and a period below the minimum are clamped and flagged; disabling mid-pulse turns
+    """m far beyond the hexagon and a period below the minimum are clamped and flagged; disabling mid-pulse turns
     every gate off on the next clock; the core restarts cleanly."""
     tb = CoreTB(dut)
     u = Inputs(FW(300.0), 0xFFFF, 20, 3)
     await tb.reset(u)
     rtl, exp = await check_run(tb, u, const(u), 30, stop=17)
-    assert int(dut.m_clamp_o.value) == 1 and int(dut.period_clamp_o.value) == 1
+    assert int(dut.sat_o.value) == 1 and int(dut.period_clamp_o.value) == 1
     assert all(p == fixed.MIN_PERIOD for p in rtl.period)
     assert int(dut.gate_hi_o.value) == 0 and int(dut.gate_lo_o.value) == 0
     u2 = Inputs(FW(300.0), MW(0.5), 700, 30)
     tb.set_inputs(u2)
     await check_run(tb, u2, const(u2), 60)
-    assert int(dut.m_clamp_o.value) == 0 and int(dut.period_clamp_o.value) == 0
+    assert int(dut.sat_o.value) == 0 and int(dut.period_clamp_o.value) == 0
 
 
 def test_svpwm_core(sim):

@@ -213,7 +213,7 @@ module svpwm_duty #(
   logic signed [KWidth-1:0] c_x [3];
   logic [CntWidth-1:0]      c_ph [3];
   logic [3*CntWidth-1:0]    c_new;
-  logic [CntWidth-1:0]      c_lo01, c_hi01, c_lo, c_hi;
+  logic [CntWidth-1:0]      c_lo01, c_hi01, c_lo, c_hi, c_mid;
 
   assign a8s    = KWidth'(prod_q[CntWidth+15:8]);            // (T1 * P) >> 8, product of step 27
   assign b8s    = KWidth'(b8_q);
@@ -234,6 +234,8 @@ module svpwm_duty #(
   assign c_lo   = (c_ph[2] < c_lo01) ? c_ph[2] : c_lo01;
   assign c_hi01 = (c_ph[1] > c_ph[0]) ? c_ph[1] : c_ph[0];
   assign c_hi   = (c_ph[2] > c_hi01) ? c_ph[2] : c_hi01;
+  assign c_mid  = CntWidth'(({2'b00, c_ph[0]} + {2'b00, c_ph[1]} + {2'b00, c_ph[2]})
+                            - {2'b00, c_lo} - {2'b00, c_hi});
 
   logic unused_cx;
   assign unused_cx = ^{c_x[0][KWidth-1:CntWidth], c_x[1][KWidth-1:CntWidth], c_x[2][KWidth-1:CntWidth]};
@@ -399,8 +401,9 @@ module svpwm_duty #(
         unique case (dpwm_q)
           2'd1:    sh_d = $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
           2'd2:    sh_d = -$signed({2'b00, c_lo});
-          2'd3:    sh_d = ({1'b0, c_lo} + {1'b0, c_hi} < {1'b0, p_q})
-                          ? -$signed({2'b00, c_lo}) : $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
+          2'd3:    sh_d = ({c_mid, 1'b0} > {1'b0, p_q})     // middle phase below average: the highest
+                          ? -$signed({2'b00, c_lo})        // phase has the largest |reference|: DPWMMAX
+                          : $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
           default: sh_d = '0;
         endcase
       end

@@ -343,9 +343,6 @@ def test_dpwm_min_max_clamp_blocks():
             assert abs(clamped[0] - n / 3) <= 2, f"dpwm {dp}: clamped {clamped[0]} of {n} samples"
 
 
-@pytest.mark.xfail(strict=True, reason="model bug (reported): fixed.dpwm_shift's DPWM_60 test min(C) + max(C) < P is "
-                   "never true for continuous-SVPWM compare values (they are centred: min + max is P or P + 1), so "
-                   "DPWM1 degenerates to DPWMMIN (one 120 deg low clamp per phase instead of two 60 deg blocks)")
 def test_dpwm1_clamps_60_deg_blocks():
     """DPWM1 (DPWM_60): each phase is clamped for 120 deg per revolution in two 60 deg blocks, high (C = 0) around
     its positive peak and low (C = P) around its negative peak (phase k peaks at k * 120 deg): the phase with the
@@ -361,15 +358,17 @@ def test_dpwm1_clamps_60_deg_blocks():
         assert angdiff(centre, math.radians(120 * k)) < math.radians(2), f"phase {k}: high block not at its peak"
 
 
-def test_dpwm1_example_report():
-    """The concrete example for the DPWM1 report: at theta = 0 (phase a at its positive peak, largest |ref|),
-    DPWM1 should clamp phase a high (C_a = 0); the model gives the DPWMMIN result instead. Kept as a record of the
-    current (wrong) behaviour so the report's numbers stay reproducible; flip it when the model is fixed."""
+def test_dpwm1_example():
+    """At theta = 0 phase a is at its positive peak (the largest |reference|): DPWM1 clamps it high (C_a = 0),
+    the DPWMMAX result; a third of a sector later phase c's negative peak dominates: DPWMMIN. (A former model
+    chose by min(C) + max(C) < P, which centred SVPWM never satisfies: DPWM1 was always DPWMMIN.)"""
     _, c_min, _, _ = modulate(F.MODE_POLAR, 1000, dpwm=F.DPWM_MIN, m=0x6000, theta=0)
     _, c_60, _, _ = modulate(F.MODE_POLAR, 1000, dpwm=F.DPWM_60, m=0x6000, theta=0)
     _, c_max, _, _ = modulate(F.MODE_POLAR, 1000, dpwm=F.DPWM_MAX, m=0x6000, theta=0)
-    assert c_max[0] == 0                 # what DPWM1 should give here
-    assert c_60 == c_min != c_max        # what the model gives
+    assert c_max[0] == 0 and c_60 == c_max != c_min
+    _, c_min, _, _ = modulate(F.MODE_POLAR, 1000, dpwm=F.DPWM_MIN, m=0x6000, theta=65536 // 6)   # 60 deg
+    _, c_60, _, _ = modulate(F.MODE_POLAR, 1000, dpwm=F.DPWM_60, m=0x6000, theta=65536 // 6)
+    assert c_60 == c_min and c_min[2] == 1000
 
 
 # ---- (e) V/f --------------------------------------------------------------------------------------------------------

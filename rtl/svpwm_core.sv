@@ -325,7 +325,9 @@ module svpwm_core #(
     .abort_i    (!run),
     .mode_i     (mode_q),
     .sector_i   (acc_sector),
-    .angle_i    (acc_angle[PhaseWidth-1 -: 16]),
+    .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held
+                                                                    // at 0 otherwise so simulators do not
+                                                                    // re-evaluate the calculator every clock
     .theta_i    (theta_q),
     .m_i        (m_q),
     .fabs_i     (fabs),

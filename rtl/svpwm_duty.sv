@@ -17,7 +17,8 @@
 // One 16x16 multiplier (one iCE40 DSP) and the single-port ROM are time-shared by a fixed schedule.
 // Parameters: CntWidth - period / compare width (8..16).
 // Latency: DutyLatency = 33 clocks from start_i to done_o, the same in every mode; outputs hold until the
-// next done_o. Restrictions: start_i is ignored while busy_o (abort_i first to restart).
+// next done_o (also across abort_i, which returns to idle without done_o). Restrictions: start_i is ignored
+// while busy_o (abort_i first to restart).
 `default_nettype none
 
 module svpwm_duty #(
@@ -169,85 +170,76 @@ module svpwm_duty #(
   endfunction
 
   // ---- sector from the projections (AB, DQ) ------------------------------------------------------
+  // (continuous assignments throughout this and the next two sections: always_comb blocks that re-read
+  // variables they assign more than once hung Icarus 11 in zero-delay loops)
   logic [XW-1:0] q [6];
-  logic [2:0]    sw, sw_sum;
+  logic [5:0]    hit;                                        // q_s >= 0 > q_{s+1}
+  logic [2:0]    sw, sw1, sw_sum;
+  logic [3:0]    sw_add;
   logic [XW-1:0] sel_t1, sel_t2;
-  logic          found;
 
-  always_comb begin
-    q[0] = x_q;
-    q[1] = z_q;
-    q[2] = XW'(-y_q);
-    q[3] = XW'(-x_q);
-    q[4] = XW'(-z_q);
-    q[5] = y_q;
-    found  = 1'b0;
-    sw     = '0;
-    sel_t1 = '0;
-    sel_t2 = '0;
-    for (int s = 0; s < 6; s++) begin
-      if (!found && !q[s][XW-1] && q[(s + 1) % 6][XW-1]) begin
-        found  = 1'b1;
-        sw     = 3'(s);
-        sel_t2 = q[s];
-        sel_t1 = XW'(-q[(s + 1) % 6]);
-      end
-    end
-    sw_sum = dq ? sw + sec0_q : sw;                          // DQ: plus theta's own sector, mod 6
-    if (dq && (sw + sec0_q) >= 4'd6) sw_sum = 3'(sw + sec0_q - 4'd6);
+  assign q[0] = x_q;
+  assign q[1] = z_q;
+  assign q[2] = XW'(-y_q);
+  assign q[3] = XW'(-x_q);
+  assign q[4] = XW'(-z_q);
+  assign q[5] = y_q;
+  for (genvar gs = 0; gs < 6; gs++) begin : gen_hit
+    assign hit[gs] = !q[gs][XW-1] && q[(gs + 1) % 6][XW-1];
   end
+  // the first hit (none: the zero vector, sector 0 and T1 = T2 = 0)
+  assign sw     = hit[0] ? 3'd0 : hit[1] ? 3'd1 : hit[2] ? 3'd2 : hit[3] ? 3'd3 : hit[4] ? 3'd4 :
+                  hit[5] ? 3'd5 : 3'd0;
+  assign sw1    = (sw == 3'd5) ? 3'd0 : sw + 3'd1;
+  assign sel_t2 = (hit != '0) ? q[sw] : '0;
+  assign sel_t1 = (hit != '0) ? XW'(-q[sw1]) : '0;
+  assign sw_add = {1'b0, sw} + {1'b0, sec0_q};               // DQ: plus theta's own sector, mod 6
+  assign sw_sum = !dq ? sw : (sw_add >= 4'd6) ? 3'(sw_add - 4'd6) : sw_add[2:0];
 
   // ---- divider step: two restoring steps per clock ------------------------------------------------
-  logic [XW-1:0] r_a, r_b;
+  logic [XW-1:0] r_a2, r_a, r_b2, r_b;
   logic          qa, qb;
 
-  always_comb begin
-    r_a = {rem_q[XW-2:0], 1'b0};
-    qa  = r_a >= div_s_q;
-    if (qa) r_a = r_a - div_s_q;
-    r_b = {r_a[XW-2:0], 1'b0};
-    qb  = r_b >= div_s_q;
-    if (qb) r_b = r_b - div_s_q;
-  end
+  assign r_a2 = {rem_q[XW-2:0], 1'b0};
+  assign qa   = r_a2 >= div_s_q;
+  assign r_a  = qa ? r_a2 - div_s_q : r_a2;
+  assign r_b2 = XW'({r_a, 1'b0});
+  assign qb   = r_b2 >= div_s_q;
+  assign r_b  = qb ? r_b2 - div_s_q : r_b2;
 
   // ---- compare-value arithmetic -------------------------------------------------------------------
-  logic signed [KWidth-1:0] a8s, b8s, sum_ab, dif_ab, base, c_x;
+  logic signed [KWidth-1:0] a8s, b8s, sum_ab, dif_ab, base;
   logic [5:0]               sel;
+  logic signed [KWidth-1:0] c_x [3];
   logic [CntWidth-1:0]      c_ph [3];
-  logic [CntWidth-1:0]      c_lo, c_hi;
+  logic [3*CntWidth-1:0]    c_new;
+  logic [CntWidth-1:0]      c_lo01, c_hi01, c_lo, c_hi, c_mid;
 
-  always_comb begin
-    a8s    = KWidth'(prod_q[CntWidth+15:8]);                 // (T1 * P) >> 8, product of step 27
-    b8s    = KWidth'(b8_q);
-    sum_ab = KWidth'($signed(sum_q));
-    dif_ab = KWidth'($signed(dif_q));
-    base   = KWidth'({p_q, 8'd0}) + KWidth'(9'd256);        // (P + 1) << 8
-    sel    = sector_sel(sector_q);
-    c_x    = '0;
-    c_d    = c_q;
-    if (st_q == 6'd29) begin
-      for (int ph = 0; ph < 3; ph++) begin
-        unique case (sel[2*ph +: 2])
-          2'd0:    c_x = base + sum_ab;
-          2'd1:    c_x = base - sum_ab;
-          2'd2:    c_x = base + dif_ab;
-          default: c_x = base - dif_ab;
-        endcase
-        c_x = c_x >>> (KFrac + 1);
-        c_d[ph*CntWidth +: CntWidth] = c_x[CntWidth-1:0];
-      end
-    end
-    for (int ph = 0; ph < 3; ph++) c_ph[ph] = c_q[ph*CntWidth +: CntWidth];
-    c_lo = c_ph[0];
-    c_hi = c_ph[0];
-    for (int ph = 1; ph < 3; ph++) begin
-      if (c_ph[ph] < c_lo) c_lo = c_ph[ph];
-      if (c_ph[ph] > c_hi) c_hi = c_ph[ph];
-    end
+  assign a8s    = KWidth'(prod_q[CntWidth+15:8]);            // (T1 * P) >> 8, product of step 27
+  assign b8s    = KWidth'(b8_q);
+  assign sum_ab = KWidth'($signed(sum_q));
+  assign dif_ab = KWidth'($signed(dif_q));
+  assign base   = KWidth'({p_q, 8'd0}) + KWidth'(9'd256);   // (P + 1) << 8
+  assign sel    = sector_sel(sector_q);
+
+  for (genvar ph = 0; ph < 3; ph++) begin : gen_cmp
+    logic signed [KWidth-1:0] k_ph;
+    assign k_ph     = sel[2*ph+1] ? dif_ab : sum_ab;         // codes 2, 3: A - B; 0, 1: A + B
+    assign c_x[ph]  = (sel[2*ph] ? base - k_ph : base + k_ph) >>> (KFrac + 1);   // odd codes: minus
+    assign c_new[ph*CntWidth +: CntWidth] = c_x[ph][CntWidth-1:0];
+    assign c_ph[ph] = c_q[ph*CntWidth +: CntWidth];
   end
+  assign c_d    = (st_q == 6'd29) ? c_new : c_q;
+  assign c_lo01 = (c_ph[1] < c_ph[0]) ? c_ph[1] : c_ph[0];
+  assign c_lo   = (c_ph[2] < c_lo01) ? c_ph[2] : c_lo01;
+  assign c_hi01 = (c_ph[1] > c_ph[0]) ? c_ph[1] : c_ph[0];
+  assign c_hi   = (c_ph[2] > c_hi01) ? c_ph[2] : c_hi01;
+  assign c_mid  = CntWidth'(({2'b00, c_ph[0]} + {2'b00, c_ph[1]} + {2'b00, c_ph[2]})
+                            - {2'b00, c_lo} - {2'b00, c_hi});
 
   logic unused_cx;
-  assign unused_cx = ^c_x[KWidth-1:CntWidth];   // c_x is in [0, P] (see model bound test)
+  assign unused_cx = ^{c_x[0][KWidth-1:CntWidth], c_x[1][KWidth-1:CntWidth], c_x[2][KWidth-1:CntWidth]};
+  // c_x is in [0, P] (see model bound test)
 
   // ---- sequence ----------------------------------------------------------------------------------
   logic [15:0]   theta6_lo;
@@ -409,16 +401,16 @@ module svpwm_duty #(
         unique case (dpwm_q)
           2'd1:    sh_d = $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
           2'd2:    sh_d = -$signed({2'b00, c_lo});
-          2'd3:    sh_d = ({1'b0, c_lo} + {1'b0, c_hi} < {1'b0, p_q})
-                          ? -$signed({2'b00, c_lo}) : $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
+          2'd3:    sh_d = ({c_mid, 1'b0} > {1'b0, p_q})     // middle phase below average: the highest
+                          ? -$signed({2'b00, c_lo})        // phase has the largest |reference|: DPWMMAX
+                          : $signed({2'b00, p_q}) - $signed({2'b00, c_hi});
           default: sh_d = '0;
         endcase
       end
-      6'd31: begin
+      6'd31: ;
+      6'd32: begin                                              // all results change with done_o
         for (int ph = 0; ph < 3; ph++)
           cmp_d[ph*CntWidth +: CntWidth] = CntWidth'($signed({2'b00, c_ph[ph]}) + sh_q);
-      end
-      6'd32: begin
         sector_out_d = sector_q;
         sat_out_d    = sat_q;
         err_out_d    = err_q;
@@ -431,9 +423,13 @@ module svpwm_duty #(
     end else begin
       st_d = (st_q == 6'(LastSt)) ? 6'd0 : st_q + 6'd1;
     end
-    if (abort_i) begin
-      st_d   = 6'd0;
-      done_d = 1'b0;
+    if (abort_i) begin                                          // back to idle, the results hold
+      st_d         = 6'd0;
+      done_d       = 1'b0;
+      cmp_d        = cmp_q;
+      sector_out_d = sector_out_q;
+      sat_out_d    = sat_out_q;
+      err_out_d    = err_out_q;
     end
   end
 

@@ -170,7 +170,7 @@ class Board:
         r = {name: self.read(a) for name, (a, _) in REGS.items()}
         st = r["STATUS"]
         return {
-            "enabled": bool(r["CTRL"] & CTRL_EN), "running": bool(st & 1), "m_clamp": bool(st & 2),
+            "enabled": bool(r["CTRL"] & CTRL_EN), "running": bool(st & 1), "sat": bool(st & 2),
             "period_clamp": bool(st & 4), "fault": bool(st & 8), "fault_pin": bool(st & 16),
             "sector": (st >> 8) & 7,
             "freq_hz": round(cfg.freq_hz(r["FREQ"]), 4), "m": r["M"] / 0x8000,

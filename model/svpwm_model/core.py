@@ -77,6 +77,8 @@ class Run:
     sector: list[int | None] = field(default_factory=list)   # sector of cmp[n]
     theta: list[int | None] = field(default_factory=list)    # exact full angle cmp[n] was computed from
     m: list[int | None] = field(default_factory=list)        # magnitude cmp[n] was computed with
+    sat: list[bool] = field(default_factory=list)            # cmp[n] was clamped to the hexagon (sat_o)
+    err: list[bool] = field(default_factory=list)            # cmp[n] from an invalid mode (cfg_err_o part)
     updates: list[Update] = field(default_factory=list)      # every update, in time order
     pole_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, pole word {c,b,a})
     gate_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, {lo[2:0], hi[2:0]})
@@ -174,6 +176,8 @@ class CoreModel:
                 r.sector.append(active.sector if active else None)
                 r.theta.append(active.theta if active else None)
                 r.m.append(active.m if active else None)
+                r.sat.append(active.sat if active else False)
+                r.err.append(active.err if active else False)
             else:
                 stop_cycle = t + stop
             halves.append((t, p_cur, active))
@@ -186,7 +190,7 @@ class CoreModel:
                 if ev and (stop_cycle is None or s - 1 < stop_cycle):
                     u_pk = pget(n) if not last else get(n - 1)   # the ports hold the last inputs
                     up = compute(u_pk, s, p_cur, dt_cur + mp_cur, True)
-                    if stop_cycle is None or s < stop_cycle:     # the duty calculator started
+                    if stop_cycle is None or up.load - 1 < stop_cycle:   # taken while still running
                         r.updates.append(up)
                         active = up
             if not last:

@@ -175,13 +175,16 @@ def dpwm_shift(c: tuple[int, int, int], period: int, dpwm: int) -> tuple[int, in
     valley) and V7 (around the peak), Minas eq. (6)/(7). The discontinuous modes move all of it into one:
     DPWM_MIN  no V7: every C moves up by P - max(C), the latest phase stays low (clamped to the - rail);
     DPWM_MAX  no V0: every C moves down by min(C), the earliest phase stays high (+ rail);
-    DPWM_60   per 60 deg the phase with the largest |reference| is clamped to its rail (DPWM1):
-              DPWM_MAX if min(C) + max(C) < P (the highest phase is the largest), else DPWM_MIN.
+    DPWM_60   per 60 deg the phase with the largest |reference| is clamped to its rail (DPWM1). The
+              three references sum to zero, so the highest one is the largest exactly when the middle
+              one is negative, i.e. its C above P/2: DPWM_MAX if 2 mid(C) > P, else DPWM_MIN.
+              (min(C) + max(C) cannot decide it: continuous SVPWM centres them, their sum is P or P + 1.)
     Only the common-mode part changes, so the line voltages and the Table I state order are kept."""
     if dpwm == DPWM_OFF:
         return c
     lo, hi = min(c), max(c)
-    if dpwm == DPWM_MAX or (dpwm == DPWM_60 and lo + hi < period):
+    mid = sum(c) - lo - hi
+    if dpwm == DPWM_MAX or (dpwm == DPWM_60 and 2 * mid > period):
         sh = -lo
     else:
         sh = period - hi

@@ -29,6 +29,8 @@ class RtlRun:
     sector: list[int] = field(default_factory=list)
     period: list[int] = field(default_factory=list)
     running: list[int] = field(default_factory=list)
+    sat: list[bool] = field(default_factory=list)
+    updates: list[int] = field(default_factory=list)     # cycles update_o was high
 
 
 def _diff(name: str, got: list, exp: list) -> str:
@@ -96,6 +98,11 @@ class CoreTB:
             await self.dut.mon.value_change
             out.append((self._cycle(), int(self.dut.mon.value)))
 
+    async def _updates(self, out: list) -> None:
+        while True:
+            await RisingEdge(self.dut.update_o)
+            out.append(self._cycle())
+
     def _read_cmp(self) -> tuple[int, int, int]:
         w = self.cmp_width
         c = int(self.dut.cmp_o.value)
@@ -123,6 +130,7 @@ class CoreTB:
         self.t0 = get_sim_time("ns")
         mon: list[tuple[int, int]] = []
         task = cocotb.start_soon(self._monitor(mon))
+        task_upd = cocotb.start_soon(self._updates(rtl_updates := []))
         await FallingEdge(d.clk)                    # valley_o of cycle 0 is already up
         rtl = RtlRun(valley=[0])
         for n in range(0, n_periods):
@@ -141,6 +149,7 @@ class CoreTB:
             rtl.sector.append(int(d.sector_o.value))
             rtl.period.append(int(d.period_o.value))
             rtl.running.append(int(d.running_o.value))
+            rtl.sat.append(bool(int(d.sat_o.value)))
             await FallingEdge(d.clk)
             self.set_inputs(get(n + 1) if pget is None else pget(n + 1))
         if stop is not None:
@@ -158,6 +167,8 @@ class CoreTB:
             await FallingEdge(d.clk)                # leave the read-only phase; the core runs on
             end = exp.end
         task.cancel()
+        task_upd.cancel()
+        rtl.updates = [c for c in rtl_updates if c < end]
         words = [(c, w) for c, w in mon if c < end]
         rtl.pole_edges = _squash([(c, w >> 6) for c, w in words])
         rtl.gate_edges = _squash([(c, w & 0x3F) for c, w in words])
@@ -172,6 +183,9 @@ class CoreTB:
         assert rtl.cmp == exp.cmp[1:], _diff("compare values", rtl.cmp, exp.cmp[1:])
         assert rtl.cmp_peak == exp.cmp_peak, _diff("compare values at the peaks", rtl.cmp_peak, exp.cmp_peak)
         assert rtl.sector == exp.sector[1:], _diff("sector", rtl.sector, exp.sector[1:])
+        assert rtl.sat == exp.sat[1:], _diff("sat_o", rtl.sat, exp.sat[1:])
+        loads = [u.load for u in exp.updates if u.load < exp.end]
+        assert rtl.updates == loads, _diff("update_o cycles", rtl.updates, loads)
         assert all(rtl.running), "running_o low in a modulated period"
         assert rtl.pole_edges == exp.pole_edges, _diff("pole edges", rtl.pole_edges, exp.pole_edges)
         assert rtl.gate_edges == exp.gate_edges, _diff("gate edges", rtl.gate_edges, exp.gate_edges)

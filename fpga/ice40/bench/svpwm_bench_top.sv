@@ -12,7 +12,7 @@ module svpwm_bench_top #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 32
+  parameter int MinPeriod  = 48
 ) (
   input  wire        clk_i,
   input  wire        rst_ni,
@@ -22,11 +22,15 @@ module svpwm_bench_top #(
   output logic [2:0] gate_lo_o,
   output logic [2:0] sector_o,
   output logic       running_o,
-  output logic       m_clamp_o,
-  output logic       period_clamp_o
+  output logic       sat_o,
+  output logic       period_clamp_o,
+  output logic       cfg_err_o,
+  output logic       adc_trig_o,
+  output logic       update_o
 );
-  localparam int NIn = 1 + FreqWidth + 16 + CntWidth + 2 * DtWidth + 7;
   localparam int B   = 1 + FreqWidth + 16 + CntWidth + DtWidth;   // first safety input bit
+  localparam int R   = B + DtWidth + 7;                          // first input-mode bit
+  localparam int NIn = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2;
 
   logic [NIn-1:0] in_q;
   always_ff @(posedge clk_i) begin
@@ -43,8 +47,21 @@ module svpwm_bench_top #(
     .clk_i          (clk_i),
     .rst_ni         (rst_ni),
     .en_i           (in_q[0]),
+    .mode_i         (in_q[R +: 3]),
     .freq_i         (in_q[1 +: FreqWidth]),
     .m_i            (in_q[1 + FreqWidth +: 16]),
+    .theta_i        (in_q[R + 3 +: 16]),
+    .v1_i           (in_q[R + 19 +: 16]),
+    .v2_i           (in_q[R + 35 +: 16]),
+    .vf_boost_i     (in_q[R + 51 +: 16]),
+    .vf_slope_i     (in_q[R + 67 +: 16]),
+    .vf_mmax_i      (in_q[R + 83 +: 16]),
+    .dpwm_i         (in_q[R + 99 +: 2]),
+    .upd_i          (in_q[R + 101 +: 2]),
+    .presc_i        (in_q[R + 103 +: 8]),
+    .adc_trig_i     (in_q[R + 111 +: 2]),
+    .sync_en_i      (in_q[R + 113]),
+    .sync_i         (in_q[R + 114]),
     .period_i       (in_q[1 + FreqWidth + 16 +: CntWidth]),
     .dt_i           (in_q[1 + FreqWidth + 16 + CntWidth +: DtWidth]),
     .mp_i           (in_q[B +: DtWidth]),
@@ -61,11 +78,15 @@ module svpwm_bench_top #(
     .carrier_up_o   (),
     .valley_o       (),
     .peak_o         (),
+    .update_o       (update_o),
+    .adc_trig_o     (adc_trig_o),
+    .sync_o         (),
     .sector_o       (sector_o),
     .cmp_o          (),
     .period_o       (),
     .running_o      (running_o),
-    .m_clamp_o      (m_clamp_o),
+    .sat_o          (sat_o),
+    .cfg_err_o      (cfg_err_o),
     .period_clamp_o (period_clamp_o),
     .freq_clamp_o   (),
     .fault_o        (),

@@ -10,7 +10,7 @@
 //   0x06 M       RW  modulation index UQ1.15 (16 bits)
 //   0x07 PERIOD  RW  half carrier period in clocks (CntWidth bits)
 //   0x08 DT      RW  dead time in clocks (DtWidth bits)
-//   0x09 STATUS  RO  [0] running [1] m_clamp [2] period_clamp [3] fault latched [4] fault pin
+//   0x09 STATUS  RO  [0] running [1] sat [2] period_clamp [3] fault latched [4] fault pin
 //                    [10:8] sector
 //   other        RO  0 (writes ignored)
 // A fault (fault_i high) latches, clears CTRL.en and holds the gates off until fault_clr.

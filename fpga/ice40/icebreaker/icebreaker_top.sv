@@ -12,7 +12,7 @@ module icebreaker_top #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 32
+  parameter int MinPeriod  = 48
 ) (
   input  wire  CLK,                   // 12 MHz
   input  wire  BTN_N,                 // user button, active low: reset

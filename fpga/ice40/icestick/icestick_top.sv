@@ -13,7 +13,7 @@ module icestick_top #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 32
+  parameter int MinPeriod  = 48
 ) (
   input  wire  CLK,                   // 12 MHz
   input  wire  RX,                    // UART from the PC (FTDI)

@@ -1,45 +1,81 @@
 # SPDX-License-Identifier: Apache-2.0
-"""svpwm_duty against the golden model fixed.compare_values (exact, ==) and its handshake.
+"""svpwm_duty against the golden model fixed.modulate (exact, ==) in every input mode, and its handshake.
 
-Handshake (RTL header, fixed.DUTY_LATENCY): start_i high in cycle c is accepted when idle; busy_o is
-high in cycles c+1 .. c+10, done_o is a one-cycle pulse in cycle c+11 = c + DUTY_LATENCY, together with
-the new cmp_o / sector_o, which then hold until the next done_o; start_i is ignored while busy_o.
-`protocol` checks every output on every clock against a small reference of exactly that handshake;
-`edge_vectors` / `random_vectors` run many vectors event-driven (await done_o, check its time).
+Handshake (RTL header): start_i high in cycle c (sampled by the rising edge that ends cycle c) is accepted
+when idle; busy_o is high in cycles c+1 .. c+32, done_o is a one-cycle pulse in cycle c+33
+(DUTY_LATENCY = 33: done_o rises 32 clock periods after the edge that sampled start_i), together with the
+new sector_o / cmp_o / sat_o / err_o, which then hold until the next done_o; start_i is ignored while busy_o.
+The done cycle is idle: a start there is accepted (back to back, one result every 33 clocks).
 
-Vectors: all six sectors at the sector edges (angle16 = 0, 1, 0x7FFF, 0x8000, 0xFFFE, 0xFFFF) x
-m = 0, 1, 0x4000, 0x7FFF, 0x8000 x periods 16, 32, 1536, 2^CntWidth - 1 (65535 / 4095) on both
-simulators, plus seeded random vectors (300 on Verilator, 100 on Icarus).
+Checks:
+* `run_vectors` (event driven: wakes at the start edge, at done_o and once more per vector): results ==
+  fixed.modulate; done_o exactly 32 periods after the sampling edge; one clock after the start busy_o = 1,
+  done_o = 0 and the previous results still held. While busy, start_i stays HIGH with scrambled inputs (and
+  sometimes they are scrambled again mid-computation): they must be ignored.
+* the harness (tb_svpwm_duty.sv) checks on every clock in SystemVerilog: outputs change only with done_o,
+  done_o one clock wide, exactly 32 busy clocks before each done_o; its sticky chk_o is asserted 0.
+* `protocol`: a per-clock reference of the handshake, every output on every clock (short), incl. abort_i pulses.
+* `abort` (and 3 % of the vectors in every run): abort_i 0 .. 32 clocks after a start: back to idle at once, no
+  done_o, the previous results hold (abort_i with start_i: the start is not taken); the next vector is exact.
 
-Builds: CntWidth 16 (default) and 12. compare_values has no width: for P < 2^CntWidth its results lie
-in [0, P] and the RTL of any width must equal them -- the CntWidth = 12 build checks that claim.
+Vectors (`directed`, the same on both simulators; `rand_vectors`: seeded, 20000 on Verilator, 1500 on Icarus):
+FREQ (6 sectors x theta' = 0, 1, 30 deg +-1 LSB, 60 deg - 1/2 LSB x m = 0 .. 1.0, 2/sqrt3 (vertex) .. 0xFFFF
+x DPWM 0..3 x P = 48, 2^CntWidth - 1), VF (f = 0, linear, exactly at / beyond mmax, -f, +-FreqMax,
+boost > mmax, zero / full-scale parameters), POLAR (theta at every 30 deg +-3 LSB and a full revolution),
+AB (grid incl. -32768 and 32767, the zero vector, rings |v| = 0.5 .. 1.99 at every 30 deg, vectors exactly
+on the 60 deg sector lines: Y = 0 / Z = 0), DQ (vector grid x theta at every 30 deg +-3 LSB incl.
+theta' = 30 deg exactly (theta = 16384, 49152: the trig switch) and a full revolution), invalid modes 5..7.
+
+Builds: CntWidth 16 (default) and 12. modulate has no width: for P < 2^CntWidth its results lie in [0, P].
 """
 from __future__ import annotations
 
 import itertools
+import math
+import os
 import random
-from dataclasses import dataclass
+import time
+import zlib
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, with_timeout
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer, with_timeout
 from cocotb.utils import get_sim_time
 
 from simrun import REPO, run_sim
 from svpwm_model import fixed
 
 CLK_NS = 10
-ANGLES = (0, 1, 0x7FFF, 0x8000, 0xFFFE, 0xFFFF)
-MS = (0, 1, 0x4000, 0x7FFF, 0x8000)
+LATENCY = 33                 # clocks: start_i in cycle c -> done_o in cycle c + LATENCY (RTL DutyLatency)
+P_MIN = 48                   # shortest period exercised
+FSHIFT = fixed.FREQ_WIDTH - 17
+M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexagon vertex
+ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
+MS = (0, 1, 0x4000, 0x7FFF, 0x8000, 0x8001, M_VERTEX, M_VERTEX + 1, 0xC000, 0xFFFF)
+VS = (-32768, -32767, -28378, -16384, -8192, -1, 0, 1, 8192, 16384, 18919, 28378, 32767)
+
+
+def icarus() -> bool:
+    return cocotb.SIM_NAME.lower().startswith("icarus")
 
 
 @dataclass(frozen=True)
 class Vec:
-    sector: int
-    angle: int
-    m: int
-    period: int
+    mode: int = fixed.MODE_FREQ
+    sector: int = 0          # accumulator sector (FREQ, VF)
+    angle: int = 0           # accumulator theta', UQ0.16 of 60 deg (FREQ, VF)
+    theta: int = 0           # 16 bits = 360 deg (POLAR, DQ)
+    m: int = 0               # UQ1.15 (FREQ, POLAR)
+    freq: int = 0            # signed frequency word (VF); the RTL gets |freq| >> FSHIFT
+    v1: int = 0              # Q2.14 v_alpha / v_d
+    v2: int = 0              # Q2.14 v_beta / v_q
+    boost: int = 0
+    slope: int = 0
+    mmax: int = 0
+    dpwm: int = 0
+    period: int = P_MIN
 
 
 class DutyTB:
@@ -48,138 +84,333 @@ class DutyTB:
         self.W = len(dut.period_i)
         self.top = (1 << self.W) - 1
 
-    def expect(self, v: Vec) -> tuple[int, int, int, int]:
-        """(sector, C_a, C_b, C_c) by the model; the model is width-free: check the result fits."""
-        c = fixed.compare_values(v.sector, v.angle, v.m, v.period)
+    def expect(self, v: Vec) -> tuple[int, int, int, int, int, int]:
+        """(sector, C_a, C_b, C_c, sat, err) by the model; the model is width-free: check the result fits."""
+        sec, c, sat, err = fixed.modulate(v.mode, v.sector, v.angle, v.period, freq=v.freq, m=v.m,
+                                          theta=v.theta, v1=v.v1, v2=v.v2, vf_boost=v.boost,
+                                          vf_slope=v.slope, vf_mmax=v.mmax, dpwm=v.dpwm)
         assert all(0 <= x <= v.period <= self.top for x in c), (v, c)
-        return (v.sector, *c)
+        return (sec, *c, int(sat), int(err))
 
     def outputs(self):
         d, W = self.dut, self.W
         cmp = int(d.cmp_o.value)
         return (int(d.busy_o.value), int(d.done_o.value), int(d.sector_o.value),
-                cmp & self.top, (cmp >> W) & self.top, (cmp >> 2 * W) & self.top)
+                cmp & self.top, (cmp >> W) & self.top, (cmp >> 2 * W) & self.top,
+                int(d.sat_o.value), int(d.err_o.value))
 
     def drive(self, start: int, v: Vec):
         d = self.dut
         d.start_i.value = start
+        d.mode_i.value = v.mode
         d.sector_i.value = v.sector
         d.angle_i.value = v.angle
+        d.theta_i.value = v.theta
         d.m_i.value = v.m
+        d.fabs_i.value = abs(v.freq) >> FSHIFT
+        d.v1_i.value = v.v1 & 0xFFFF
+        d.v2_i.value = v.v2 & 0xFFFF
+        d.vf_boost_i.value = v.boost
+        d.vf_slope_i.value = v.slope
+        d.vf_mmax_i.value = v.mmax
+        d.dpwm_i.value = v.dpwm
         d.period_i.value = v.period
 
-    def rand_vec(self, rng: random.Random) -> Vec:
-        return Vec(rng.randrange(6), rng.randrange(1 << 16), rng.randint(0, fixed.M_ONE),
-                   rng.randint(16, self.top))
+    def junk(self, rng: random.Random) -> Vec:
+        """Any input word at all (what start_i must ignore while busy)."""
+        return Vec(rng.randrange(8), rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16),
+                   rng.randrange(1 << 16), rng.randint(-fixed.FREQ_MAX, fixed.FREQ_MAX),
+                   rng.randint(-32768, 32767), rng.randint(-32768, 32767), rng.randrange(1 << 16),
+                   rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(4),
+                   rng.randint(P_MIN, self.top))
 
     async def reset(self):
-        self.drive(0, Vec(0, 0, 0, 16))
+        self.drive(0, Vec())
+        self.dut.abort_i.value = 0
         self.dut.rst_ni.value = 0
         await FallingEdge(self.dut.clk)
         await FallingEdge(self.dut.clk)
         self.dut.rst_ni.value = 1
-        assert self.outputs() == (0, 0, 0, 0, 0, 0)
+        assert self.outputs() == (0,) * 8
 
-    async def run_vectors(self, vecs, rng: random.Random):
-        """Event-driven: start each vector right in the done cycle of the previous one (back to back),
-        scramble the inputs after the start, await done_o and check its time and the results."""
+    def check_harness(self, what: str):
+        chk = int(self.dut.chk_o.value)
+        assert chk == 0, (f"{what}: harness handshake checker chk_o = {chk:03b} (bit 0: output changed without "
+                          f"done_o, 1: done_o > 1 clock, 2: busy_o length / done_o while busy)")
+
+    async def aborted_start(self, rng: random.Random, k: int):
+        """Start junk, pulse abort_i k clocks after the start edge (k = 0: together with start_i, which then
+        is not accepted; k = 31, 32: in the last steps, so no done_o must follow). The previous results must
+        hold (the harness checker flags any output change without done_o); busy_o must be low afterwards."""
+        dut = self.dut
+        self.drive(1, self.junk(rng))
+        dut.abort_i.value = int(k == 0)
+        await FallingEdge(dut.clk)
+        if k:
+            self.drive(int(rng.random() < 0.5), self.junk(rng))
+            await Timer((k - 1) * CLK_NS + 2, "ns")            # 2 ns after falling edge k (before rising edge k)
+            dut.abort_i.value = 1
+            await FallingEdge(dut.clk)
+        self.drive(0, self.junk(rng))
+        dut.abort_i.value = 0
+        got = self.outputs()
+        assert got[:2] == (0, 0), f"abort {k} clocks after the start: busy_o, done_o = {got[:2]}, expected idle"
+        await FallingEdge(dut.clk)                              # no done_o on its way
+        assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
+        self.check_harness(f"abort {k} clocks after the start")
+
+    async def run_vectors(self, vecs, rng: random.Random, name: str):
+        """Event-driven, back to back: each vector is started in the done cycle of the previous one."""
         dut = self.dut
         prev = None
+        t0 = time.perf_counter()
+        await FallingEdge(dut.clk)
         for i, v in enumerate(vecs):
+            if rng.random() < 0.03:                             # a junk computation aborted after k clocks
+                await self.aborted_start(rng, rng.randint(0, LATENCY - 1))
             self.drive(1, v)
             await FallingEdge(dut.clk)
             t_start = get_sim_time("ns") - CLK_NS // 2         # the rising edge that sampled v
-            if prev is not None:                                # the previous results still hold
-                assert self.outputs()[1:] == (0, *prev), f"vector {i}: outputs changed before done_o"
-            self.drive(0, self.rand_vec(rng))                   # inputs are sampled only at the start
-            await with_timeout(RisingEdge(dut.done_o), (fixed.DUTY_LATENCY + 2) * CLK_NS, "ns")
+            got = self.outputs()
+            if prev is not None:                                # busy; done pulse over; results held
+                assert got == (1, 0, *prev), f"{name} {i}: one clock after the start {got}, expected busy + {prev}"
+            else:
+                assert got[:2] == (1, 0), f"{name} {i}: not busy one clock after the start"
+            self.drive(1, self.junk(rng))                       # start_i held high: ignored while busy
+            if rng.random() < 0.25:                             # scramble once more mid-computation
+                await Timer(rng.randint(1, LATENCY - 3) * CLK_NS + 2, "ns")
+                self.drive(int(rng.random() < 0.5), self.junk(rng))
+            await with_timeout(RisingEdge(dut.done_o), (LATENCY + 2) * CLK_NS, "ns")
             await ReadOnly()
             dt = get_sim_time("ns") - t_start
-            assert dt == (fixed.DUTY_LATENCY - 1) * CLK_NS, f"vector {i}: done_o {dt} ns after the start edge"
+            assert dt == (LATENCY - 1) * CLK_NS, f"{name} {i}: done_o {dt} ns after the start edge"
             exp = self.expect(v)
             got = self.outputs()
-            assert got == (0, 1, *exp), (f"vector {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc) = {got}, "
-                                        f"model {exp}")
+            assert got == (0, 1, *exp), (f"{name} {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = "
+                                         f"{got}, model {exp}")
             prev = exp
-            await FallingEdge(dut.clk)
+            await FallingEdge(dut.clk)                          # middle of the done cycle
+        self.drive(0, Vec())
+        await FallingEdge(dut.clk)
+        await FallingEdge(dut.clk)
+        self.check_harness(name)
+        dut._log.info("%s: %d vectors == model in %.1f s", name, len(vecs), time.perf_counter() - t0)
 
 
-@cocotb.test()
-async def edge_vectors(dut):
-    """6 sectors x sector-edge angles x m = 0, 1, 0x4000, 0x7FFF, 0x8000 x periods 16, 32, 1536, max."""
-    tb = DutyTB(dut)
-    await tb.reset()
-    periods = sorted({16, 32, 1536 if tb.top > 1536 else tb.top - 1, tb.top})
-    vecs = [Vec(*x) for x in itertools.product(range(6), ANGLES, MS, periods)]
-    await tb.run_vectors(vecs, random.Random(1))
-    dut._log.info("%d edge vectors", len(vecs))
+# ---- vectors --------------------------------------------------------------------------------------------
+
+def spread(base, periods, start=0):
+    """Every vector of `base` once, DPWM and period cycled (all 8 combinations in every 8 vectors)."""
+    return [replace(v, dpwm=(start + i) % 4, period=periods[((start + i) // 4) % len(periods)])
+            for i, v in enumerate(base)]
+
+
+def cross(base, periods):
+    """Every vector of `base` with every DPWM setting and every period."""
+    return [replace(v, dpwm=d, period=p) for v in base for d in range(4) for p in periods]
+
+
+def boundary_thetas():
+    """theta at every 30 deg (k 2^16 / 12, rounded) +- 3 LSB: theta' near 0, 60 deg - 1 and 30 deg, all sectors.
+    (6 theta is even, so theta' = 0 exactly only at 0 / 180 deg and theta' = 30 deg exactly only at
+    theta = 16384 / 49152; theta' = 60 deg - 2 LSB is the largest reachable.)"""
+    return sorted({(round(k * 65536 / 12) + d) & 0xFFFF for k in range(12) for d in range(-3, 4)})
+
+
+def ab_on_lines():
+    """(v_alpha, v_beta) exactly on a 60 deg sector line: Z = v_beta/2 - sqrt3/2 v_alpha = 0 or Y = 0 in the
+    RTL's integers (a projection q_k exactly 0: the tie in the sector search)."""
+    out = []
+    for va in (-32768, -30001, -20000, -9999, -2, 2, 9998, 20000, 30000, 32767):
+        a = fixed._mul_v(va, fixed.SQRT3_2)
+        if a % 2 == 0 and -32768 <= a // 2 <= 32767:
+            out += [(va, a // 2), (va, -(a // 2))]
+    return out
+
+
+def directed(top: int) -> dict[str, list[Vec]]:
+    periods = (P_MIN, top)
+    F, VF, PO, AB, DQ = fixed.MODE_FREQ, fixed.MODE_VF, fixed.MODE_POLAR, fixed.MODE_AB, fixed.MODE_DQ
+    sets: dict[str, list[Vec]] = {}
+    # FREQ: the accumulator's sector + theta' (all sector edges) x m, every DPWM and period
+    sets["freq"] = cross([Vec(F, s, a, m=m) for s in range(6) for a in ANGLES for m in MS], periods)
+    # VF: the law itself (f = 0 -> boost, linear, at / beyond mmax, sign, extremes), then through the modulator
+    fm = fixed.FREQ_MAX
+    laws = [(0x0800, 0x0100, 0x8000), (0x0800, 0x0181, 0x93CD), (0x1000, 0x0100, 0x8000),
+            (0x9000, 0x0010, 0x8000), (0, 0, 0), (0xFFFF, 0xFFFF, 0xFFFF), (0x0123, 0xFFFF, 0xFFFF),
+            (0x4000, 0x0001, 0x0000), (0, 0x0080, 0xFFFF)]
+    freqs = (0, 1, (1 << FSHIFT) - 1, 1 << FSHIFT, -(1 << FSHIFT), 0x3000 << FSHIFT, -(0x3000 << FSHIFT),
+             (0x6FFF << FSHIFT) + 5, 0x7000 << FSHIFT, -((0x7000 << FSHIFT) + 127), 0x7001 << FSHIFT,
+             0x8000 << FSHIFT, fm, -fm, 123456, -123456)
+    vf = [Vec(VF, (i * 5) % 6, ANGLES[i % len(ANGLES)], freq=f, boost=b, slope=s, mmax=mx)
+          for i, ((b, s, mx), f) in enumerate(itertools.product(laws, freqs))]
+    sets["vf"] = spread(vf, periods)
+    # POLAR: every 30 deg +- 3 LSB x m; a full revolution in 257-LSB steps
+    ms_po = (0, 0x4000, 0x8000, M_VERTEX, M_VERTEX + 1, 0xFFFF)
+    po = [Vec(PO, theta=t, m=m) for t in boundary_thetas() for m in ms_po]
+    po += [Vec(PO, theta=t, m=m) for t in range(0, 1 << 16, 257) for m in (0x8000, M_VERTEX)]
+    sets["polar"] = spread(po, periods)
+    # AB: grid (extremes, zero), rings at every 30 deg +- a little, exact sector lines
+    ab = [(a, b) for a in VS for b in VS]
+    for r in (0.5, 1.0, 2 / math.sqrt(3), 1.5, 1.99):
+        for k in range(12):
+            for d in (-1e-4, 0.0, 1e-4):
+                ph = math.radians(30 * k) + d
+                ab.append(tuple(max(-32768, min(32767, round(r * fixed.V_ONE * f(ph)))) for f in (math.cos, math.sin)))
+    ab += ab_on_lines()
+    sets["ab"] = spread([Vec(AB, v1=a, v2=b) for a, b in ab], periods)
+    # DQ: vector grid x theta at every 30 deg +- 3 (incl. theta' = 30 deg exactly), a full revolution
+    dqv = [(0, 0), (0x4000, 0), (0, 0x4000), (-0x4000, 0), (0, -0x4000), (32767, 32767), (-32768, -32768),
+           (-32768, 32767), (32767, -32768), (1, 0), (0, 1), (-1, -1), (12345, -23456), (M_VERTEX // 2, 0)]
+    dq = [Vec(DQ, theta=t, v1=a, v2=b) for t in boundary_thetas() for a, b in dqv]
+    dq += [Vec(DQ, theta=t, v1=a, v2=b) for t in range(0, 1 << 16, 257)
+           for a, b in ((0x4000, 0), (9000, 30000), (-32768, -32768))]
+    sets["dq"] = spread(dq, periods)
+    # invalid modes: zero vector + err_o whatever the other inputs
+    rng = random.Random(5)
+    bad = [Vec(md, rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(1 << 16),
+               rng.randint(-fm, fm), rng.randint(-32768, 32767), rng.randint(-32768, 32767),
+               0x8000, 0x100, 0xFFFF) for md in (5, 6, 7) for _ in range(2)]
+    sets["invalid"] = cross(bad, periods)
+    return sets
+
+
+def rand_vectors(rng: random.Random, n: int, top: int) -> list[Vec]:
+    fm = fixed.FREQ_MAX
+    out = []
+    for _ in range(n):
+        mode = rng.choice((0, 0, 1, 1, 2, 2, 3, 3, 3, 4, 4, 4, 5, 6, 7))
+        r = rng.random()
+        period = P_MIN if r < 0.05 else top if r < 0.1 else rng.randint(P_MIN, top)
+        m = rng.randrange(1 << 16) if rng.random() < 0.5 else rng.randint(0, M_VERTEX + 64)
+        if rng.random() < 0.5:                                   # uniform words
+            v1, v2 = rng.randint(-32768, 32767), rng.randint(-32768, 32767)
+        else:                                                    # uniform magnitude 0 .. 1.99, any angle
+            mag, ph = rng.uniform(0, 1.99) * fixed.V_ONE, rng.uniform(0, 2 * math.pi)
+            v1, v2 = (max(-32768, min(32767, round(mag * f(ph)))) for f in (math.cos, math.sin))
+        freq = rng.randint(-fm, fm) if rng.random() < 0.5 else rng.randint(-(1 << 20), 1 << 20)
+        out.append(Vec(mode, rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), m, freq, v1, v2,
+                       rng.randrange(0x4000), rng.randrange(1 << 16) >> rng.randrange(17),
+                       rng.choice((rng.randrange(1 << 16), 0x8000, M_VERTEX, 0xFFFF)), rng.randrange(4), period))
+    return out
+
+
+# ---- cocotb tests -----------------------------------------------------------------------------------------
+
+def _directed_test(key):
+    async def t(dut):
+        tb = DutyTB(dut)
+        await tb.reset()
+        await tb.run_vectors(directed(tb.top)[key], random.Random(zlib.crc32(key.encode())), key)
+    t.__name__ = f"directed_{key}"
+    t.__qualname__ = t.__name__
+    t.__doc__ = f"Directed vectors, mode set {key!r} (module docstring)."
+    return cocotb.test()(t)
+
+
+directed_freq = _directed_test("freq")
+directed_vf = _directed_test("vf")
+directed_polar = _directed_test("polar")
+directed_ab = _directed_test("ab")
+directed_dq = _directed_test("dq")
+directed_invalid = _directed_test("invalid")
 
 
 @cocotb.test()
 async def random_vectors(dut):
-    """Seeded random (sector, angle16, m <= 0x8000, period in [16, 2^CntWidth - 1])."""
+    """Seeded random vectors over all modes, DPWM settings and periods [48, 2^CntWidth - 1]."""
     tb = DutyTB(dut)
-    n = 100 if cocotb.SIM_NAME.lower().startswith("icarus") else 300
+    n = int(os.environ.get("DUTY_NRAND", 1500 if icarus() else 20000))
     rng = random.Random(0xD07 + tb.W)
     await tb.reset()
-    await tb.run_vectors([tb.rand_vec(rng) for _ in range(n)], rng)
+    await tb.run_vectors(rand_vectors(rng, n, tb.top), rng, "random")
 
 
 class Ref:
-    """Per-clock reference of the handshake (module docstring), results from fixed.compare_values."""
+    """Per-clock reference of the handshake (module docstring), results from fixed.modulate."""
 
     def __init__(self, tb: DutyTB):
-        self.tb, self.st, self.latch, self.done, self.res = tb, 0, None, 0, (0, 0, 0, 0)
+        self.tb, self.st, self.latch, self.done, self.res = tb, 0, None, 0, (0,) * 6
         self.starts, self.dones = [], []
 
     def outputs(self):
         return (int(self.st != 0), self.done, *self.res)
 
-    def clock(self, cycle: int, start: int, v: Vec):
+    def clock(self, cycle: int, start: int, abort: int, v: Vec):
         self.done = 0
-        if self.st == fixed.DUTY_LATENCY - 1:
+        if abort:                               # back to idle, no done_o, results held, start_i not taken
+            self.st = 0
+        elif self.st == LATENCY - 1:
             self.st, self.done, self.res = 0, 1, self.tb.expect(self.latch)
             self.dones.append(cycle + 1)
         elif self.st:
             self.st += 1
-        elif start:
+        elif start:                             # idle (incl. the done cycle): accept
             self.st, self.latch = 1, v
             self.starts.append(cycle)
 
 
 @cocotb.test()
 async def protocol(dut):
-    """Every output on every clock: single starts with gaps, start_i held high with inputs changing
-    every clock (ignored while busy, back-to-back restarts), random start pulses."""
+    """Every output on every clock against the reference: single starts with gaps, start_i held high with
+    inputs changing every clock (ignored while busy, back-to-back restarts), random start pulses."""
     tb = DutyTB(dut)
     rng = random.Random(0xB05 + tb.W)
     await tb.reset()
+    assert fixed.DUTY_LATENCY == LATENCY, "model DUTY_LATENCY differs from the RTL's"
     sched = []
     for gap in (0, 1, 2, 15):                                 # single start pulses
-        sched += [(1, tb.rand_vec(rng))] + [(0, tb.rand_vec(rng))] * (fixed.DUTY_LATENCY - 1 + gap)
-    sched += [(1, tb.rand_vec(rng)) for _ in range(5 * fixed.DUTY_LATENCY + 3)]   # start held high
-    sched += [(int(rng.random() < 0.3), tb.rand_vec(rng)) for _ in range(150)]    # random pulses
-    sched += [(0, tb.rand_vec(rng))] * 14
+        sched += [(1, 0, tb.junk(rng))] + [(0, 0, tb.junk(rng)) for _ in range(LATENCY - 1 + gap)]
+    sched += [(1, 0, tb.junk(rng)) for _ in range(4 * LATENCY + 3)]   # start held high
+    sched += [(int(rng.random() < 0.1), 0, tb.junk(rng)) for _ in range(200)]   # random pulses
+    for k in (LATENCY - 2, LATENCY - 1, 5):                   # abort in the last steps / early, start held high
+        sched += [(1, 0, tb.junk(rng))] + [(1, 0, tb.junk(rng)) for _ in range(k - 1)] + [(1, 1, tb.junk(rng))]
+        sched += [(0, 0, tb.junk(rng)) for _ in range(3)]
+    sched += [(int(rng.random() < 0.3), int(rng.random() < 0.02), tb.junk(rng)) for _ in range(300)]
+    sched += [(0, 0, tb.junk(rng)) for _ in range(LATENCY + 2)]
     ref = Ref(tb)
     trace = []
-    for cyc, (start, v) in enumerate(sched):
+    aborts = []
+    for cyc, (start, abort, v) in enumerate(sched):
         got = tb.outputs()
-        assert got == ref.outputs(), f"cycle {cyc}: RTL (busy, done, sector, Ca, Cb, Cc) = {got}, ref {ref.outputs()}"
+        assert got == ref.outputs(), (f"cycle {cyc}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = {got}, "
+                                      f"ref {ref.outputs()}")
         trace.append(got)
         tb.drive(start, v)
-        ref.clock(cyc, start, v)
+        dut.abort_i.value = abort
+        if abort:
+            aborts.append(cyc)
+        ref.clock(cyc, start, abort, v)
         await FallingEdge(dut.clk)
     # the handshake, stated directly on the RTL trace
-    assert len(ref.starts) >= 15
-    for c in ref.starts:
-        if c + fixed.DUTY_LATENCY < len(trace):
-            assert trace[c + fixed.DUTY_LATENCY][1] == 1, f"no done_o {fixed.DUTY_LATENCY} clocks after start at {c}"
-            assert all(trace[k][0] == 1 and trace[k][1] == 0 for k in range(c + 1, c + fixed.DUTY_LATENCY))
+    assert len(ref.starts) >= 10
+    done_starts = [c for c in ref.starts if not any(c <= a < c + LATENCY for a in aborts)]
+    for c in done_starts:
+        if c + LATENCY < len(trace):
+            assert trace[c + LATENCY][1] == 1, f"no done_o {LATENCY} clocks after the start in cycle {c}"
+            assert all(trace[k][0] == 1 and trace[k][1] == 0 for k in range(c + 1, c + LATENCY))
     dones = [k for k, t in enumerate(trace) if t[1]]
-    assert dones == [c + fixed.DUTY_LATENCY for c in ref.starts if c + fixed.DUTY_LATENCY < len(trace)]
+    assert dones == [c + LATENCY for c in done_starts if c + LATENCY < len(trace)]
     for a, b in zip(trace, trace[1:]):
         if not b[1]:
             assert b[2:] == a[2:], "outputs changed without done_o"
+    tb.check_harness("protocol")
+    dut._log.info("protocol: %d clocks, %d starts (%d aborted), latency %d clocks", len(sched), len(ref.starts),
+                  len(ref.starts) - len(done_starts), LATENCY)
+
+
+@cocotb.test()
+async def abort(dut):
+    """abort_i k = 0 .. 32 clocks after a start (k = 0: with start_i): back to idle, no done_o, results held;
+    then a vector computes correctly."""
+    tb = DutyTB(dut)
+    rng = random.Random(0xAB0 + tb.W)
+    await tb.reset()
+    vecs = rand_vectors(rng, LATENCY, tb.top)
+    await tb.run_vectors(vecs[:1], rng, "before abort")
+    for k in range(LATENCY):
+        await tb.aborted_start(rng, k)
+        await tb.run_vectors([vecs[k]], rng, f"after abort at {k}")
 
 
 BUILDS = {"cnt16": {"CntWidth": 16}, "cnt12": {"CntWidth": 12}}

@@ -207,10 +207,7 @@ def test_svpwm_bus(sim, bus):
     from simrun import REPO, run_sim
 
     core = sorted(p for p in (REPO / "rtl").glob("*.sv"))
-    # Icarus runs only the test that keeps the core stopped: with the carrier running, the current core
-    # (since "core: input modes") simulates at about 7 clocks/s on Icarus 11 (its own tb_svpwm_core
-    # mode tests show the same), so the running-core tests would take hours there. They run on Verilator.
-    testcase = ["fields_reach_core"] if sim == "icarus" else None
+    testcase = None
     run_sim(sim, toplevel="tb_svpwm_bus", sources=core + [HERE / "tb_svpwm_bus.sv"],
             test_module="test_svpwm_bus", test_dir=HERE,
             parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "MinPeriod": MIN_PERIOD},

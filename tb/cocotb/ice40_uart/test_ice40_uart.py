@@ -17,6 +17,7 @@ from cocotb.triggers import ClockCycles, FallingEdge, RisingEdge, with_timeout
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
+from svpwm_model import fixed  # noqa: E402
 
 CPB = 16                # clocks per bit (harness parameter)
 TIMEOUT_BITS = 40
@@ -134,7 +135,7 @@ async def writes_drive_the_gates(dut):
     await u.write("PERIOD", 8)                 # below MinPeriod: clamped, flagged
     await ClockCycles(dut.clk, 600)
     assert (await u.read("STATUS")) & 4, "period_clamp not reported"
-    assert int(dut.a_hi_interval.value) == 64
+    assert int(dut.a_hi_interval.value) == 2 * fixed.MIN_PERIOD   # the system's MinPeriod (48)
     await u.write("PERIOD", 64)
     await u.write("FREQ", 0x7FFFFF)            # fast rotation: the sector must move
     sectors = set()

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """Random stress of svpwm_core: random input ("register") writes at random moments of the period,
-random fault pulses (including sub-clock glitches), trip-mode / safe-state / polarity / lock changes
-and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
+random fault pulses (including sub-clock glitches), trip-mode / safe-state / polarity / lock changes,
+every input mode (invalid codes included), references beyond the hexagon, DPWM, update modes,
+prescaler, sync start and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
 never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, mp) unless
 a forced state made it, gates off in reset and while disabled, the trip forcing, the lock.
 
@@ -35,7 +36,7 @@ class Stress:
     def rand_period(self) -> int:
         r = self.rng.random()
         if r < 0.15:
-            return self.rng.randint(0, 40)                          # below the minimum: clamped
+            return self.rng.randint(0, 60)                          # below the minimum (48): clamped
         if r < 0.75:
             return self.rng.randint(24, 400)                        # fast carriers: many edges
         return self.rng.randint(400, (1 << self.W_P) - 1)
@@ -47,8 +48,9 @@ class Stress:
     def write(self) -> None:
         """One random 'register write' on the core's inputs."""
         d, rng = self.dut, self.rng
-        what = rng.choices(["freq", "m", "period", "dt", "mp", "en", "cbc", "safe", "pol", "lock", "clear"],
-                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4])[0]
+        what = rng.choices(["freq", "m", "period", "dt", "mp", "en", "cbc", "safe", "pol", "lock", "clear",
+                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync"],
+                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2])[0]
         if what == "freq":
             d.freq_i.value = rng.choice([rng.randint(-(1 << 23), (1 << 23) - 1), rng.randint(-200000, 200000), 0])
         elif what == "m":
@@ -69,8 +71,28 @@ class Stress:
             d.pol_i.value = rng.randint(0, 3)
         elif what == "lock":
             d.lock_i.value = 1
-        else:
+        elif what == "clear":
             d.fault_clear_i.value = rng.randint(0, 1)
+        elif what == "mode":                                        # 5..7 invalid: zero vector + flag
+            d.mode_i.value = rng.randint(0, 7)
+        elif what == "theta":
+            d.theta_i.value = rng.randint(0, 0xFFFF)
+        elif what == "v":                                           # up to +-1.99 (beyond the hexagon)
+            getattr(d, rng.choice(["v1_i", "v2_i"])).value = rng.choice(
+                [rng.randint(-32768, 32767), rng.randint(-0x4000, 0x4000), -32768, 32767, 0])
+        elif what == "vf":
+            getattr(d, rng.choice(["vf_boost_i", "vf_slope_i", "vf_mmax_i"])).value = rng.randint(0, 0xFFFF)
+        elif what == "dpwm":
+            d.dpwm_i.value = rng.randint(0, 3)
+        elif what == "upd":                                         # 3 invalid: valley + flag
+            d.upd_i.value = rng.randint(0, 3)
+        elif what == "presc":
+            d.presc_i.value = rng.choice([0, 0, 1, 3, rng.randint(0, 255)])
+        elif what == "adc":
+            d.adc_trig_i.value = rng.randint(0, 3)
+        else:                                                       # sync: a waiting core starts on sync_i
+            d.sync_en_i.value = 1 if rng.random() < 0.3 else 0
+            d.sync_i.value = rng.randint(0, 1)
         self.writes += 1
 
     async def fault_pulse(self) -> None:
@@ -114,7 +136,9 @@ async def random_stress(dut):
     d = dut
     for sig, v in (("en_i", 0), ("freq_i", 0), ("m_i", 0), ("period_i", 200), ("dt_i", 5), ("mp_i", 0),
                    ("fault_i", 0), ("fault_clear_i", 0), ("trip_cbc_i", 0), ("safe_lo_i", 0), ("pol_i", 0),
-                   ("lock_i", 0), ("rst_ni", 0)):
+                   ("lock_i", 0), ("mode_i", 0), ("theta_i", 0), ("v1_i", 0), ("v2_i", 0), ("vf_boost_i", 0),
+                   ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),
+                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("rst_ni", 0)):
         getattr(d, sig).value = v
     await ClockCycles(d.clk, 3)
     await FallingEdge(d.clk)

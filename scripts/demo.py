@@ -51,11 +51,14 @@ POINTS = [
 SWEEP = [dict(name=f"sweep_50hz_m{int(round(m * 100)):03d}", f_hz=50.0, m=m, period=P_VERMA, dt=DT_1US,
               save_edges=True, revs=2, vcd=False, title=f"m sweep: 50 Hz, m = {m}")
          for m in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)]
-# AVR495 Fig. 6-1: speed steps with the RTL in the loop (V/f + slip-regulated PI speed loop, motor model fed by the
-# gate edges). ctrl "slip": f = p n / 60 + PI slip command limited to +-1.5 Hz (motor.SlipPISpeed; why not AVR495's
-# PI -> frequency: see its docstring and model/tests/test_motor_loop.py); "avr495" reproduces the old loop.
+# AVR495 Fig. 6-1: speed steps with the RTL in the loop: slip-regulated PI speed loop writing only the frequency word;
+# the core runs in V/f mode (mode_i = 1) and computes m itself from motor.VfLaw's register words (motor.vf_words);
+# motor model fed by the gate edges. ctrl "slip": f = p n / 60 + PI slip command limited to +-1.5 Hz
+# (motor.SlipPISpeed; why not AVR495's PI -> frequency: see its docstring and model/tests/test_motor_loop.py);
+# "avr495" reproduces the old loop.
 SPEED = dict(name="speed_loop_vf", kind="speed_loop", t_end_s=2.0, period=P_VERMA, dt=DT_1US, f_hz=0.0, m=0.0,
-             ctrl="slip", title="AVR495 Fig. 6-1: +700 -> -700 rpm, V/f + slip-regulated PI speed loop, RTL in the loop")
+             ctrl="slip", title="AVR495 Fig. 6-1: +700 -> -700 rpm, slip-regulated PI speed loop, V/f law computed by "
+                                "the core (mode 1), RTL in the loop")
 
 
 class SetupError(RuntimeError):
@@ -134,6 +137,10 @@ def print_table(r: dict) -> None:
               f"{r['sim_wall_s']:.1f} s ({r['cycles_per_s'] / 1e6:.2f} M cycles/s incl. the motor model); inverter: "
               f"{r['inverter']}; final speed {r['final_speed_rpm']:.1f} rpm; RTL == model on every edge: "
               f"{_pf(r['rtl_equals_model'])}")
+        if r.get("vf_words"):
+            w = r["vf_words"]
+            print(f"   core input mode: {r.get('core_mode')}; V/f words boost {w['boost']}, slope {w['slope']} (UQ8.8), "
+                  f"m_max {w['m_max']}; the loop writes only freq_i")
         return
     print()
     print(f"== {pt.get('title', pt['name'])}")

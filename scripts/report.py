@@ -293,9 +293,9 @@ def plot_speed(npz, r, path: Path):
     ax[0].plot(tt, ww * 60 / (2 * np.pi), color="C0", lw=1.2, label="motor speed")
     ax[0].set_ylabel("rpm")
     ax[0].legend(loc="upper right", fontsize=8)
-    ax[0].set_title("Speed steps +700 → −700 rpm (AVR495 Fig. 6-1): V/f with boost + slip-regulated PI speed loop\n"
-                    "feeding the RTL's frequency input every carrier period (Verilator, 0.75 kW 4-pole motor model, "
-                    "dead time 1 µs)",
+    ax[0].set_title("Speed steps +700 → −700 rpm (AVR495 Fig. 6-1): slip-regulated PI speed loop writing the RTL's "
+                    "frequency input every carrier period;\nV/f law with boost computed by the core (mode 1) "
+                    "(Verilator, 0.75 kW 4-pole motor model, dead time 1 µs)",
                     fontsize=9)
     ax[1].plot(lg["t"], lg["f"], color="C1", lw=1, label="stator frequency command f = p·n/60 + f_slip")
     ax[1].plot(lg["t"], np.asarray(lg["f"]) - M.MotorParams.p * np.asarray(lg["n"]) / 60, color="C4", lw=1,
@@ -303,9 +303,9 @@ def plot_speed(npz, r, path: Path):
     ax[1].set_ylabel("Hz")
     ax[1].legend(loc="upper right", fontsize=8)
     ax[2].plot(lg["t"], np.asarray(lg["m"]) * M.UDC / np.sqrt(3), color="C2", lw=1,
-               label="phase voltage fundamental peak m·Udc/√3 (V/f + boost)")
+               label="phase voltage fundamental peak m·Udc/√3 (m from the core's V/f mode, boost + slope·|f|)")
     ax[2].set_ylabel("V")
-    ax[2].legend(loc="upper right", fontsize=8)
+    ax[2].legend(loc="center right", fontsize=8)
     ax[3].plot(tt, ii.real, lw=0.3, color="C3", label="i_a")
     ax[3].set_ylabel("A")
     ax[3].set_xlabel("time (s)")
@@ -462,11 +462,14 @@ def build(out: Path, minas: list[str], sweep: list[str], speed: str | None) -> d
         plot_speed(npz, r, p)
         ss = speed_summary(npz)
         ctrl = M.make_speed_ctrl(r["point"].get("ctrl", "slip"), **r["point"].get("ctrl_args", {}))
+        vfl = M.VfLaw()
+        vfw = r.get("vf_words") or M.vf_words(vfl).__dict__
         metrics["speed_loop"] = dict(summary=ss, rtl_equals_model=r.get("rtl_equals_model"), cycles=r.get("cycles"),
                                      sim_wall_s=r.get("sim_wall_s"), inverter=r.get("inverter"),
                                      controller=dict(kind=type(ctrl).__name__, **{k: v for k, v in ctrl.__dict__.items()
                                                                                   if k not in ("integ", "f_slip")}),
-                                     vf=M.VfLaw().__dict__)
+                                     core_mode=r.get("core_mode"),
+                                     vf=dict(vfl.__dict__, words=vfw))
         st0 = next(v for k, v in ss.items() if k.startswith("start_to_"))
         st = next(v for k, v in ss.items() if k.startswith("reversal_to_"))
 
@@ -474,8 +477,12 @@ def build(out: Path, minas: list[str], sweep: list[str], speed: str | None) -> d
             return "not settled" if x is None else f"{x:.2f} s"
         figs.append((p.name, "Speed response +700 → −700 rpm (AVR495 Fig. 6-1)",
                      f"RTL in the loop (Verilator): every carrier period the motor model is advanced over the RTL's "
-                     f"gate edges (1 µs dead time), the speed controller computes the stator frequency and the V/f law "
-                     f"m, and both go to the core's inputs for the next period ({r.get('cycles', 0):,} clocks; afterwards "
+                     f"gate edges (1 µs dead time) and the speed controller computes the stator frequency, whose word is the "
+                     f"only input written for the next period; the V/f law is computed by the core (mode 1, VF): "
+                     f"m = min(m_max, boost + slope·|f|) from its registers boost = {vfw['boost']} "
+                     f"({vfl.boost}), slope = {vfw['slope']} (UQ8.8 m-LSBs per {M.vf_unit_hz() * 1e3:.1f} mHz = {vfl.slope:.4f}/Hz), "
+                     f"m_max = {vfw['m_max']} ({vfl.m_max}), converted once by motor.vf_words "
+                     f"({r.get('cycles', 0):,} clocks; afterwards "
                      f"the golden model replayed the same inputs: RTL == model on every edge: "
                      f"{r.get('rtl_equals_model')}). Loop: slip-regulated V/f (f = p·n/60 + PI slip command limited to "
                      f"±{getattr(ctrl, 'f_slip_max', float('nan'))} Hz, kp = {ctrl.kp} Hz/rpm, ki = {ctrl.ki} Hz/(rpm·s), "

@@ -36,6 +36,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import fixed
+
 A = cmath.exp(2j * math.pi / 3)
 F_CLK = 48e6
 
@@ -267,8 +269,9 @@ class VfLaw:
     Defaults: m = 0.9 at 50 Hz (Udc = 360 V: 230 V rms line, the rated point) and boost = 0.06:
     0.06 * 360 V / sqrt3 = 12.5 V phase peak ~ R_s * sqrt2 * 2.5 A, the stator resistance drop at about the
     magnetising current, so the flux stays near rated at low f (AVR495 sec. 6: near f = 0 "the stator
-    voltage magnitude is equal to the boost voltage").  The three named values are what the RTL's V/f mode
-    takes; ``from_rated`` gives them from a rated point."""
+    voltage magnitude is equal to the boost voltage").  The three named values are what the core's V/f mode
+    (mode_i = 1) takes, as register words from ``vf_words``; ``from_rated`` gives them from a rated point.
+    ``m`` is the continuous law: the reference for the conversion test and the small-signal analysis."""
     boost: float = 0.06
     slope: float = (0.9 - 0.06) / 50.0       # per Hz
     m_max: float = 1.0
@@ -279,6 +282,69 @@ class VfLaw:
 
     def m(self, f_hz: float) -> float:
         return min(self.m_max, self.boost + self.slope * abs(f_hz))
+
+
+VF_UNIT_SHIFT = fixed.FREQ_WIDTH - 17     # the core's V/f law sees |freq| >> VF_UNIT_SHIFT (its top 16 bits)
+VF_SLOPE_FRAC = 8                         # vf_slope_i is UQ8.8
+WORD_MAX = 0xFFFF                         # vf_boost_i, vf_slope_i, vf_mmax_i: 16 bits each
+
+
+def vf_unit_hz(f_clk: float = F_CLK) -> float:
+    """One unit of the core's V/f law input: 2^(FREQ_WIDTH-17) frequency-word LSBs (59.6 mHz at 48 MHz)."""
+    return fixed.freq_lsb_hz(f_clk) * (1 << VF_UNIT_SHIFT)
+
+
+@dataclass(frozen=True)
+class VfWords:
+    """The V/f law as the core's register words (mode_i = 1, README "Input modes"):
+    ``boost`` and ``m_max`` UQ1.15 (0x8000 = m 1.0), ``slope`` UQ8.8 m-LSBs per 2^(FREQ_WIDTH-17)
+    frequency-word LSBs.  The core computes
+    m = min(m_max, boost + ((|freq| >> (FREQ_WIDTH-17)) * slope + 128) >> 8) (fixed.vf_m) from the frequency
+    word it samples."""
+    boost: int
+    slope: int
+    m_max: int
+
+    def m_word(self, freq_word: int) -> int:
+        """m (UQ1.15) the core computes for ``freq_word`` (bit-exact: fixed.vf_m)."""
+        return fixed.vf_m(freq_word, self.boost, self.slope, self.m_max)
+
+    def inputs(self) -> dict:
+        """Keyword arguments for svpwm_model.core.Inputs: VF mode with these words."""
+        return dict(mode=fixed.MODE_VF, vf_boost=self.boost, vf_slope=self.slope, vf_mmax=self.m_max)
+
+
+def vf_words(vf: VfLaw, f_clk: float = F_CLK) -> VfWords:
+    """Convert the named V/f values (m, m per Hz) to the core's register words, once (rounded to nearest).
+
+    Raises ValueError, naming the value and its range, if a value does not fit: boost or m_max outside
+    UQ1.15 (0 .. 1.99997), a negative slope, a slope too large for UQ8.8 at this f_clk (at most
+    255.996 m-LSBs per law unit: 0.131 per Hz at 48 MHz, 10x less at 480 MHz), or a non-zero slope that
+    rounds to 0.  Defaults at 48 MHz: boost 0.06 -> 1966, slope 0.0168/Hz -> 32.8125 m-LSBs per unit ->
+    8400 (exact), m_max 1.0 -> 32768."""
+    def uq1_15(name: str, x: float) -> int:
+        w = int(round(x * fixed.M_ONE))
+        if not 0 <= w <= WORD_MAX:
+            raise ValueError(f"V/f {name} = {x} does not fit the core's UQ1.15 register (0 .. "
+                             f"{WORD_MAX / fixed.M_ONE:.5f}, word 0 .. 0xFFFF): word {w}")
+        return w
+
+    boost, m_max = uq1_15("boost", vf.boost), uq1_15("m_max", vf.m_max)
+    unit = vf_unit_hz(f_clk)
+    per_unit = vf.slope * fixed.M_ONE * unit            # m-LSBs per law unit
+    slope = int(round(per_unit * (1 << VF_SLOPE_FRAC)))
+    slope_max = WORD_MAX / (1 << VF_SLOPE_FRAC) / fixed.M_ONE / unit      # per Hz
+    if vf.slope < 0:
+        raise ValueError(f"V/f slope = {vf.slope:g} per Hz is negative: the core's UQ8.8 slope is unsigned")
+    if slope > WORD_MAX:
+        raise ValueError(f"V/f slope = {vf.slope:g} per Hz is too large for the core's UQ8.8 register at "
+                         f"f_clk = {f_clk / 1e6:g} MHz: {per_unit:.3f} m-LSBs per law unit "
+                         f"({unit * 1e3:.2f} mHz = 2^{VF_UNIT_SHIFT} frequency LSBs) needs word {slope} > 0xFFFF; "
+                         f"largest slope at this clock {slope_max:.5f} per Hz")
+    if slope == 0 and vf.slope > 0:
+        raise ValueError(f"V/f slope = {vf.slope:g} per Hz rounds to 0 in the core's UQ8.8 register at "
+                         f"f_clk = {f_clk / 1e6:g} MHz (resolution {slope_max / WORD_MAX:.3g} per Hz)")
+    return VfWords(boost=boost, slope=slope, m_max=m_max)
 
 
 @dataclass
@@ -368,9 +434,9 @@ class LoopLog:
     n_ref: list = field(default_factory=list)      # rpm
     n: list = field(default_factory=list)          # rpm
     f: list = field(default_factory=list)          # Hz commanded (before word rounding)
-    m: list = field(default_factory=list)
-    freq_word: list = field(default_factory=list)
-    m_word: list = field(default_factory=list)
+    m: list = field(default_factory=list)          # the core's V/f m for freq_word (fixed.vf_m / 2^15)
+    freq_word: list = field(default_factory=list)  # the word written to freq_i
+    m_word: list = field(default_factory=list)     # the core's V/f m, UQ1.15 (computed by the core, not an input)
     i_peak: list = field(default_factory=list)     # |i_s| (A) at the valley
     torque: list = field(default_factory=list)     # N m at the valley
 
@@ -379,46 +445,55 @@ class LoopLog:
 
 
 class SpeedLoop:
-    """V/f + speed controller evaluated at carrier valleys: ``update(t_cycles, motor)`` returns (freq_word, m_word).
+    """Speed controller evaluated at carrier valleys, driving the core in V/f mode (mode_i = 1):
+    ``update(t_cycles, motor)`` returns the frequency word, the only input that changes; the V/f law is
+    computed by the core from it.  The law's three words (``self.vf_words``, from ``vf_words``) are converted
+    once here and stay on the core's vf_* inputs (``core_inputs()``).
 
     Used identically by the RTL co-simulation (tb/cocotb/demo/demo_runs.py), the switched model loop
     (``run_speed_loop_model``) and the averaged-inverter loop (``run_speed_loop_averaged``).  ``ctrl``: any
-    object with ``step(n_ref, n, dt) -> f_hz`` (default ``SlipPISpeed``; ``PISpeed`` is AVR495's structure);
-    the V/f law maps f to m.  ``every``: the controller runs every ``every`` carrier periods and holds its
-    output in between.  The speed is read once per update, at the valley (no filter, no aliasing: the loop
-    rate, 15.6 kHz, is > 1000x the mechanical bandwidth)."""
+    object with ``step(n_ref, n, dt) -> f_hz`` (default ``SlipPISpeed``; ``PISpeed`` is AVR495's structure).
+    ``every``: the controller runs every ``every`` carrier periods and holds its output in between.  The
+    speed is read once per update, at the valley (no filter, no aliasing: the loop rate, 15.6 kHz, is > 1000x
+    the mechanical bandwidth).  The log's ``m`` / ``m_word`` are the core's V/f output for the word written
+    (fixed.vf_m, bit-exact), not an input."""
 
     def __init__(self, vf: VfLaw | None = None, ctrl=None, profile=speed_profile,
                  f_clk: float = F_CLK, every: int = 1, pi=None):
         self.vf = vf or VfLaw()
+        self.vf_words = vf_words(self.vf, f_clk)
         self.ctrl = ctrl or pi or SlipPISpeed()
         self.pi = self.ctrl                      # old name
         self.profile, self.f_clk, self.every = profile, f_clk, every
         self.log = LoopLog()
         self._k = 0
         self._t_last = None
-        self._out = (0, 0)
-        self.f_m = (0.0, 0.0)                    # last (f, m) before word rounding
+        self._out = 0
+        self.f_m = (0.0, 0.0)                    # (f of the word written, m the core computes from it)
 
-    def update(self, t_cycles: int, motor) -> tuple[int, int]:
-        from . import fixed
+    def core_inputs(self) -> dict:
+        """The constant core inputs of the loop: VF mode and the law's words (svpwm_model.core.Inputs kwargs)."""
+        return self.vf_words.inputs()
+
+    def update(self, t_cycles: int, motor) -> int:
         t = t_cycles / self.f_clk
         if self._k % self.every == 0:
             n = motor.speed_rpm()
             n_ref = self.profile(t)
             dt = 0.0 if self._t_last is None else t - self._t_last
             f = self.ctrl.step(n_ref, n, dt)
-            m = self.vf.m(f)
-            self.f_m = (f, m)
-            self._out = (fixed.freq_word(f, self.f_clk), fixed.m_word(m))
+            fw = fixed.freq_word(f, self.f_clk)
+            mw = self.vf_words.m_word(fw)
+            self.f_m = (fw * fixed.freq_lsb_hz(self.f_clk), mw / fixed.M_ONE)
+            self._out = fw
             self._t_last = t
             lg = self.log
             i = motor.current()
             mp = motor.mp
             pr = motor.pr
             te = 1.5 * mp.p * mp.Lm / mp.Lr * (pr.real * i.imag - pr.imag * i.real)
-            for k, v in (("t", t), ("n_ref", n_ref), ("n", n), ("f", f), ("m", m), ("freq_word", self._out[0]),
-                         ("m_word", self._out[1]), ("i_peak", abs(i)), ("torque", te)):
+            for k, v in (("t", t), ("n_ref", n_ref), ("n", n), ("f", f), ("m", mw / fixed.M_ONE), ("freq_word", fw),
+                         ("m_word", mw), ("i_peak", abs(i)), ("torque", te)):
                 getattr(lg, k).append(v)
         self._k += 1
         return self._out
@@ -471,7 +546,8 @@ def run_speed_loop_averaged(t_end_s: float, loop: SpeedLoop | None = None, motor
                             period: int = 1536, delay: int = 1):
     """The speed loop on the averaged inverter, updated every carrier period (2 * period clocks) like the
     RTL loop; the command computed at a valley acts ``delay`` periods later (the core samples its inputs at
-    the next peak and uses them from the following period).  2 s of motor time in ~1 s.  Returns (loop, motor)."""
+    the next peak and uses them from the following period): the word's frequency and the m the core's V/f
+    mode computes from it (``loop.f_m``).  2 s of motor time in ~1 s.  Returns (loop, motor)."""
     loop = loop or SpeedLoop()
     motor = motor or AveragedMotor()
     h = 2 * period / loop.f_clk
@@ -579,12 +655,12 @@ def step_metrics(t, n, n_ref, steps=STEP_TIMES, band: float = 0.02, tail: float 
 
 def run_speed_loop_model(t_end_s: float, period: int = 1536, loop: SpeedLoop | None = None,
                          motor: InverterMotor | None = None, progress: bool = False):
-    """The closed loop against a replica of the core's timeline and bit-exact compare values
-    (fixed.compare_values; poles, ideal inverter, no dead time): for tuning, tests and as a fallback.
-    Returns (loop, motor)."""
-    from . import fixed
+    """The closed loop against a replica of the core's timeline and bit-exact compare values in V/f mode
+    (fixed.modulate with the loop's V/f words; poles, ideal inverter, no dead time): for tuning, tests and
+    as a fallback.  Returns (loop, motor)."""
     loop = loop or SpeedLoop()
     motor = motor or InverterMotor(gates=False)
+    vw = loop.vf_words
     full = 6 << fixed.PHASE_WIDTH
     n_periods = int(round(t_end_s * F_CLK / (2 * period)))
     theta, f_cur, cmp_cur, t = 0, 0, None, 0
@@ -601,10 +677,11 @@ def run_speed_loop_model(t_end_s: float, period: int = 1536, loop: SpeedLoop | N
             ev.sort(key=lambda e: e[0])
             motor.pending.extend(ev)
         motor.advance_to(t)
-        fw, mw = loop.update(t, motor)
+        fw = loop.update(t, motor)
         theta = (theta + f_cur * period) % full
         sector, angle = theta >> fixed.PHASE_WIDTH, theta & ((1 << fixed.PHASE_WIDTH) - 1)
-        cmp_cur_next = fixed.compare_values(sector, angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS), mw, period)
+        cmp_cur_next = fixed.modulate(fixed.MODE_VF, sector, angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS),
+                                      period, freq=fw, vf_boost=vw.boost, vf_slope=vw.slope, vf_mmax=vw.m_max)[1]
         f_cur = fw
         theta = (theta + f_cur * period) % full
         # edges of period n were queued above from cmp_cur; the next period uses cmp_cur_next

@@ -18,7 +18,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from svpwm_model import fixed
 from svpwm_model import motor as M
+from svpwm_model.core import CoreModel, Inputs
 
 T_END = 2.0
 SETTLE_MAX = (0.5, 0.8)        # s after each step
@@ -132,3 +134,81 @@ def test_slip_pi_anti_windup():
     assert c.f_slip == c.f_slip_max and f == pytest.approx(c.f_slip_max) and abs(c.integ) < 1e-12
     f = c.step(700.0, 690.0, 1e-3)              # leaving the limit: P term only, no stored integral
     assert c.f_slip == pytest.approx(c.kp * 10 + c.ki * 10 * 1e-3)
+
+
+# ---- V/f law as the core's register words (VF mode, mode_i = 1) ----------------------------------------
+
+def test_vf_words_defaults():
+    """boost 0.06 -> 1966, slope 0.0168/Hz = 32.8125 m-LSBs per 59.6 mHz -> UQ8.8 8400 (exact), m_max 1.0."""
+    w = M.vf_words(M.VfLaw())
+    assert (w.boost, w.slope, w.m_max) == (1966, 8400, fixed.M_ONE)
+    assert w.inputs() == dict(mode=fixed.MODE_VF, vf_boost=1966, vf_slope=8400, vf_mmax=fixed.M_ONE)
+
+
+def _core_and_law(vf):
+    """Every frequency word up to |f_max| (60 Hz, both signs): the core's m with the converted words
+    (fixed.vf_m, vectorised) and VfLaw at the frequency the core's law sees (|freq| truncated to 2^7 word LSBs
+    = 59.6 mHz) and at the word's exact frequency, in m LSBs."""
+    w = M.vf_words(vf)
+    f_max = M.SlipPISpeed().f_max
+    fw = np.arange(-fixed.freq_word(f_max), fixed.freq_word(f_max) + 1, dtype=np.int64)
+    fa = np.abs(fw) >> M.VF_UNIT_SHIFT
+    core = np.minimum(w.m_max, w.boost + ((fa * w.slope + 128) >> 8))
+    for k in np.linspace(0, len(fw) - 1, 200).astype(int):          # the vectorised form is fixed.vf_m
+        assert core[k] == fixed.vf_m(int(fw[k]), w.boost, w.slope, w.m_max)
+    law = np.minimum(vf.m_max, vf.boost + vf.slope * fa * M.vf_unit_hz()) * fixed.M_ONE
+    exact = np.minimum(vf.m_max, vf.boost + vf.slope * np.abs(fw) * fixed.freq_lsb_hz()) * fixed.M_ONE
+    return core, law, exact, int(fa.max())
+
+
+def test_vf_words_match_vf_law():
+    """The demo's law (VfLaw()) converted to words and computed by the core (fixed.vf_m, bit-exact) is within
+    one m LSB of VfLaw over every frequency word up to |f_max| = 60 Hz, VfLaw taken at the frequency the core's
+    law sees (measured: 0.52 LSB; the slope 0.0168/Hz is 32.8125 m-LSBs per unit, exact in UQ8.8).  Against
+    VfLaw at the word's exact frequency the difference is the law's input resolution, at most one step of
+    slope * 59.6 mHz = 32.8 LSB (0.1 % of full m) + 1."""
+    vf = M.VfLaw()
+    core, law, exact, _ = _core_and_law(vf)
+    assert np.max(np.abs(core - law)) <= 1.0
+    assert np.max(np.abs(core - exact)) <= vf.slope * M.vf_unit_hz() * fixed.M_ONE + 1.0
+
+
+@pytest.mark.parametrize("vf", [M.VfLaw.from_rated(boost=0.03, m_rated=0.95, m_max=1.15),
+                                M.VfLaw(boost=0.0, slope=0.0123456, m_max=0.8)])
+def test_vf_words_error_bound_other_laws(vf):
+    """Other laws (the second has a slope UQ8.8 does not represent exactly: 1.27 LSB). The error grows with
+    |f| by the slope's rounding, <= 2^-9 m-LSB per law unit, so the bound is 0.5 (boost) + 0.5 (the core's
+    rounding) + fa_max / 512 (= 1.97 LSB at 60 Hz): up to ~3 LSB, not one."""
+    core, law, exact, fa_max = _core_and_law(vf)
+    assert np.max(np.abs(core - law)) <= 1.0 + fa_max / 512
+
+
+@pytest.mark.parametrize("vf, f_clk, match", [
+    (M.VfLaw(), 480e6, r"slope = 0\.0168 per Hz is too large for the core's UQ8\.8 register at f_clk = 480 MHz"),
+    (M.VfLaw(slope=0.2), 48e6, r"too large for the core's UQ8\.8.*largest slope at this clock 0\.131"),
+    (M.VfLaw(slope=-0.01), 48e6, r"slope = -0\.01 per Hz is negative"),
+    (M.VfLaw(slope=1e-9), 48e6, r"rounds to 0"),
+    (M.VfLaw(boost=-0.01), 48e6, r"boost = -0\.01 does not fit the core's UQ1\.15"),
+    (M.VfLaw(m_max=2.0), 48e6, r"m_max = 2\.0 does not fit the core's UQ1\.15"),
+])
+def test_vf_words_errors(vf, f_clk, match):
+    with pytest.raises(ValueError, match=match):
+        M.vf_words(vf, f_clk)
+
+
+def test_speed_loop_writes_only_the_frequency_word():
+    """The loop drives the core in VF mode: update() returns the frequency word, the V/f words are constant,
+    and the logged m is what the golden model's core computes from the word (CoreModel, VF mode)."""
+    loop = M.SpeedLoop()
+    assert loop.core_inputs()["mode"] == fixed.MODE_VF
+    mot = M.AveragedMotor()
+    fws = []
+    for k in range(50):
+        fws.append(loop.update(2 * 1536 * k, mot))
+        mot.step(*loop.f_m, 2 * 1536 / M.F_CLK)
+    lg = loop.log.as_arrays()
+    assert list(lg["freq_word"]) == fws and fws[-1] == fixed.freq_word(lg["f"][-1])
+    assert all(mw == loop.vf_words.m_word(fw) for fw, mw in zip(fws, lg["m_word"]))
+    idle = Inputs(freq=fws[0], period=1536, **loop.core_inputs())
+    run = CoreModel().run(idle, [Inputs(freq=f, period=1536, **loop.core_inputs()) for f in fws[1:]], len(fws) - 1)
+    assert [u.m for u in run.updates] == list(lg["m_word"][1:len(run.updates) + 1])

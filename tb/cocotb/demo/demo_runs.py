@@ -213,10 +213,11 @@ async def run_point(dut, pt: dict) -> None:
 
 async def run_speed_loop(dut, pt: dict) -> None:
     """Closed loop with the RTL in it: motor (svpwm_model.motor, driven by the RTL's gate edges with dead
-    time resolved by the current sign) + V/f + speed controller (``ctrl``: "slip" = SlipPISpeed, the
+    time resolved by the current sign) + speed controller (``ctrl``: "slip" = SlipPISpeed, the
     slip-regulated loop, default; "avr495" = PISpeed; ``ctrl_args``: its parameters), evaluated at every
-    carrier valley from the edges the RTL has produced so far; the result sets the frequency and m inputs
-    sampled at the next peak.
+    carrier valley from the edges the RTL has produced so far; the result sets the frequency input sampled
+    at the next peak.  The core runs in V/f mode (mode_i = 1): it computes m from the frequency word with
+    the law's boost / slope / m_max words (motor.vf_words, set once before the start).
     Afterwards the golden model replays the recorded inputs and must equal the RTL on every edge."""
     import sys
 
@@ -235,8 +236,9 @@ async def run_speed_loop(dut, pt: dict) -> None:
     mot = M.InverterMotor(gates=dt > 0, trace=True, trace_every=int(pt.get("trace_every", 4)))
     loop = M.SpeedLoop(ctrl=M.make_speed_ctrl(pt.get("ctrl", "slip"), **pt.get("ctrl_args", {})),
                        every=int(pt.get("every", 1)))
-    fw, mw = loop.update(0, mot)
-    idle = Inputs(freq=fw, m=mw, period=P, dt=dt)
+    vf_in = loop.core_inputs()             # VF mode (mode_i = 1) + the law's words, constant for the run
+    fw = loop.update(0, mot)
+    idle = Inputs(freq=fw, period=P, dt=dt, **vf_in)
     inputs = [idle]
     await tb.reset(idle)
     tb.model.idle(tb.idle_cycles)
@@ -246,6 +248,8 @@ async def run_speed_loop(dut, pt: dict) -> None:
     tb.t0 = cocotb.utils.get_sim_time("ns")
     mon: list = []
     task = cocotb.start_soon(tb._monitor(mon))
+    upd_cycles: list = []
+    task_upd = cocotb.start_soon(tb._updates(upd_cycles))
     await FallingEdge(d.clk)
     rtl = RtlRun(valley=[0])
     k_mon = 0
@@ -253,6 +257,9 @@ async def run_speed_loop(dut, pt: dict) -> None:
     bar = tqdm(total=n_per, desc="speed loop (RTL in the loop, Verilator)", unit="period", file=sys.stderr,
                mininterval=2.0, dynamic_ncols=False, ncols=100)
     for n in range(1, n_per + 1):
+        await RisingEdge(d.peak_o)               # peak of period n - 1 (CoreTB.run records the same values)
+        await ReadOnly()
+        rtl.cmp_peak.append(tb._read_cmp() if int(d.running_o.value) else None)
         await RisingEdge(d.valley_o)
         await ReadOnly()
         c = tb._cycle()
@@ -264,14 +271,13 @@ async def run_speed_loop(dut, pt: dict) -> None:
         bar.update(1)
         if n == n_per:
             break
-        w = tb.cmp_width
-        cv = int(d.cmp_o.value)
-        rtl.cmp.append(tuple((cv >> (w * ph)) & ((1 << w) - 1) for ph in range(3)))
+        rtl.cmp.append(tb._read_cmp())
         rtl.sector.append(int(d.sector_o.value))
         rtl.period.append(int(d.period_o.value))
         rtl.running.append(int(d.running_o.value))
-        fw, mw = loop.update(c, mot)
-        u = Inputs(freq=fw, m=mw, period=P, dt=dt)
+        rtl.sat.append(bool(int(d.sat_o.value)))
+        fw = loop.update(c, mot)
+        u = Inputs(freq=fw, period=P, dt=dt, **vf_in)
         inputs.append(u)
         await FallingEdge(d.clk)
         tb.set_inputs(u)
@@ -279,7 +285,9 @@ async def run_speed_loop(dut, pt: dict) -> None:
     await FallingEdge(d.clk)
     t_sim = time.perf_counter() - t_sim0
     task.cancel()
+    task_upd.cancel()
     exp = tb.model.run(idle, inputs, n_per)
+    rtl.updates = [cy for cy in upd_cycles if cy < exp.end]
     words = [(cy, w) for cy, w in mon if cy < exp.end]
     rtl.pole_edges = _squash([(cy, w >> 6) for cy, w in words])
     rtl.gate_edges = _squash([(cy, w & 0x3F) for cy, w in words])
@@ -302,7 +310,9 @@ async def run_speed_loop(dut, pt: dict) -> None:
                sim_wall_s=t_sim, cycles_per_s=exp.end / t_sim, rtl_equals_model=eq,
                gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges), npz=str(npz), failures=fails,
                inverter="gate edges, dead time resolved by current sign" if dt > 0 else "pole edges (ideal)",
-               final_speed_rpm=mot.speed_rpm(), test_wall_s=time.perf_counter() - t_test, ok=not fails)
+               final_speed_rpm=mot.speed_rpm(), core_mode="vf (mode_i = 1): m computed by the core",
+               vf_words=dict(boost=vf_in["vf_boost"], slope=vf_in["vf_slope"], m_max=vf_in["vf_mmax"]),
+               test_wall_s=time.perf_counter() - t_test, ok=not fails)
     (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2) + "\n")
     dut._log.info("%s: %d periods, %d cycles in %.1f s, RTL == model: %s", pt["name"], n_per, exp.end, t_sim, eq)
     assert not fails, "\n".join(fails)

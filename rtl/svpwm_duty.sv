@@ -213,7 +213,8 @@ module svpwm_duty #(
   logic signed [KWidth-1:0] c_x [3];
   logic [CntWidth-1:0]      c_ph [3];
   logic [3*CntWidth-1:0]    c_new;
-  logic [CntWidth-1:0]      c_lo01, c_hi01, c_lo, c_hi, c_mid;
+  logic [CntWidth-1:0]      c_lo, c_hi, c_mid;
+  logic [3*CntWidth-1:0]    lmh_new, lmh_d, lmh_q;     // {hi, mid, lo} of the compare values
 
   assign a8s    = KWidth'(prod_q[CntWidth+15:8]);            // (T1 * P) >> 8, product of step 27
   assign b8s    = KWidth'(b8_q);
@@ -230,12 +231,23 @@ module svpwm_duty #(
     assign c_ph[ph] = c_q[ph*CntWidth +: CntWidth];
   end
   assign c_d    = (st_q == 6'd29) ? c_new : c_q;
-  assign c_lo01 = (c_ph[1] < c_ph[0]) ? c_ph[1] : c_ph[0];
-  assign c_lo   = (c_ph[2] < c_lo01) ? c_ph[2] : c_lo01;
-  assign c_hi01 = (c_ph[1] > c_ph[0]) ? c_ph[1] : c_ph[0];
-  assign c_hi   = (c_ph[2] > c_hi01) ? c_ph[2] : c_hi01;
-  assign c_mid  = CntWidth'(({2'b00, c_ph[0]} + {2'b00, c_ph[1]} + {2'b00, c_ph[2]})
-                            - {2'b00, c_lo} - {2'b00, c_hi});
+  // smallest, largest and middle compare value without comparators: per Table 4-3 the phase with code 1
+  // (-(A+B)) is the smallest, code 0 (+(A+B)) the largest, codes 2/3 (+-(A-B)) the middle one, since
+  // A, B >= 0 (floor keeps the order); registered with the values at step 29
+  always_comb begin
+    lmh_new = {c_new[CntWidth-1:0], c_new[CntWidth-1:0], c_new[CntWidth-1:0]};
+    for (int ph = 0; ph < 3; ph++) begin
+      unique case (sel[2*ph +: 2])
+        2'd0:    lmh_new[2*CntWidth +: CntWidth] = c_new[ph*CntWidth +: CntWidth];   // hi
+        2'd1:    lmh_new[0 +: CntWidth]          = c_new[ph*CntWidth +: CntWidth];   // lo
+        default: lmh_new[CntWidth +: CntWidth]   = c_new[ph*CntWidth +: CntWidth];   // mid
+      endcase
+    end
+  end
+  assign lmh_d = (st_q == 6'd29) ? lmh_new : lmh_q;
+  assign c_lo  = lmh_q[0 +: CntWidth];
+  assign c_mid = lmh_q[CntWidth +: CntWidth];
+  assign c_hi  = lmh_q[2*CntWidth +: CntWidth];
 
   logic unused_cx;
   assign unused_cx = ^{c_x[0][KWidth-1:CntWidth], c_x[1][KWidth-1:CntWidth], c_x[2][KWidth-1:CntWidth]};
@@ -472,6 +484,7 @@ module svpwm_duty #(
       sum_q        <= '0;
       dif_q        <= '0;
       sh_q         <= '0;
+      lmh_q        <= '0;
       prod_q       <= '0;
       c_q          <= '0;
       cmp_q        <= '0;
@@ -517,6 +530,7 @@ module svpwm_duty #(
       sum_q        <= sum_d;
       dif_q        <= dif_d;
       sh_q         <= sh_d;
+      lmh_q        <= lmh_d;
       prod_q       <= prod_d;
       c_q          <= c_d;
       cmp_q        <= cmp_d;

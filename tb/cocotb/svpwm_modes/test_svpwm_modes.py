@@ -27,9 +27,10 @@ from svpwm_tb import CoreTB
 
 ICARUS = os.environ.get("SVPWM_SIM_NAME", "") == "icarus"
 P = 96 if ICARUS else 1536                 # half period
-K = 48 if ICARUS else 192                  # carrier periods per revolution
+K = 96 if ICARUS else 192                  # carrier periods per revolution (>= 64 at P = 96: |freq| < 2^23)
 DT = 3 if ICARUS else 48                   # dead time (1 us at 48 MHz for P = 1536)
 F_REV = (6 << fixed.PHASE_WIDTH) // (2 * P * K)          # frequency word: one revolution in K periods
+assert F_REV <= fixed.FREQ_MAX, "one revolution in K periods needs a frequency word beyond the port range"
 MW = fixed.m_word
 V_ONE = fixed.V_ONE
 
@@ -76,7 +77,7 @@ async def vf_law_reversal(dut):
     the vector stands at m = boost, the angle never jumps; at the ends m_max (beyond 1.0) clamps."""
     tb = CoreTB(dut)
     n = 3 * K
-    f_hi = 3 * F_REV
+    f_hi = min(3 * F_REV, fixed.FREQ_MAX)
     fa_hi = abs(f_hi) >> (fixed.FREQ_WIDTH - 17)
     boost, mmax = MW(0.05), 0x9000                     # m_max 1.125: the hexagon clamps near the vertices
     slope = max(1, int((1.2 * fixed.M_ONE - boost) * 256 / max(fa_hi, 1)))

@@ -13,7 +13,7 @@ regs-check: $(STAMP)
 	$(PY) scripts/gen_regs.py --check
 
 # The bus-side tops are linted on their own (the main lint top is svpwm_core); same sources and waivers.
-BUS_LINT_TOPS ?= svpwm_axil svpwm_wb svpwm_regs svpwm_axil_if svpwm_wb_if
+BUS_LINT_TOPS ?= svpwm_axil svpwm_wb svpwm_mmio svpwm_regs svpwm_axil_if svpwm_wb_if
 lint: lint-bus
 lint-bus: $(STAMP)
 	@for t in $(BUS_LINT_TOPS); do \

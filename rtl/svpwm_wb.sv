@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// svpwm_wb: svpwm_core behind a 32-bit Wishbone B4 slave: svpwm_wb_if + svpwm_regs (generated from
-// rdl/svpwm.rdl, map in docs/registers.md) + svpwm_core. Every RW register field drives a core input
+// svpwm_wb: svpwm_core behind a 32-bit Wishbone B4 slave: svpwm_wb_if + svpwm_mmio (svpwm_regs, generated
+// from rdl/svpwm.rdl, map in docs/registers.md, + svpwm_core). Every RW register field drives a core input
 // continuously; the core samples its inputs at its load points, so a write takes effect at the next
 // load point (carrier valley and/or peak, CTRL.upd), never in the middle of a carrier period.
 // Parameters:
@@ -48,12 +48,6 @@ module svpwm_wb #(
   output logic                 tripped_o           // safe state forced (e.g. an LED)
 );
 
-  // Field widths of the register map (rdl/svpwm.rdl) = the core's width parameters.
-  localparam int CntWidth   = 16;
-  localparam int PhaseWidth = 34;
-  localparam int FreqWidth  = 24;
-  localparam int DtWidth    = 10;
-
   logic                 req, we;
   logic [AddrWidth-1:0] addr;
   logic [31:0]          wdata, rdata;
@@ -70,54 +64,14 @@ module svpwm_wb #(
     .req_o (req), .we_o (we), .addr_o (addr), .wdata_o (wdata), .be_o (be), .rdata_i (rdata)
   );
 
-  // ---- register block <-> core -------------------------------------------------------------------
-  logic                        en, sync_en, trip_cbc, safe_lo, lock, fault_clear;
-  logic [1:0]                  pol, upd, dpwm, adc_trig;
-  logic [2:0]                  mode;
-  logic [FreqWidth-1:0]        freq;
-  logic [15:0]                 m, theta, v1, v2, vf_boost, vf_slope, vf_mmax;
-  logic [CntWidth-1:0]         period, carrier, period_act;
-  logic [DtWidth-1:0]          dt, mp;
-  logic [7:0]                  presc;
-  logic                        carrier_up, sat, cfg_err, period_clamp, freq_clamp, fault, locked;
-  logic [2:0]                  sector;
-  logic [3*CntWidth-1:0]       cmp;
-
-  svpwm_regs #(
-    .AddrWidth (AddrWidth),
-    .GatePol   (GatePol)
-  ) u_regs (
+  svpwm_mmio #(
+    .AddrWidth (AddrWidth), .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol)
+  ) u_mmio (
     .clk_i (clk_i), .rst_ni (rst_ni),
     .req_i (req), .we_i (we), .addr_i (addr), .wdata_i (wdata), .be_i (be), .rdata_o (rdata),
-    .ctrl_en_o (en), .ctrl_sync_en_o (sync_en), .ctrl_trip_cbc_o (trip_cbc), .ctrl_safe_lo_o (safe_lo),
-    .ctrl_pol_o (pol), .ctrl_lock_o (lock), .ctrl_fault_clear_o (fault_clear), .ctrl_mode_o (mode),
-    .ctrl_upd_o (upd), .ctrl_dpwm_o (dpwm), .ctrl_adc_trig_o (adc_trig),
-    .freq_o (freq), .m_o (m), .theta_o (theta), .v1_o (v1), .v2_o (v2),
-    .vf_boost_o (vf_boost), .vf_slope_o (vf_slope), .vf_mmax_o (vf_mmax),
-    .period_o (period), .dt_o (dt), .mp_o (mp), .presc_o (presc),
-    .status_running_i (running_o), .status_sat_i (sat), .status_cfg_err_i (cfg_err),
-    .status_period_clamp_i (period_clamp), .status_freq_clamp_i (freq_clamp), .status_fault_i (fault),
-    .status_tripped_i (tripped_o), .status_locked_i (locked), .status_sector_i (sector),
-    .carrier_count_i (carrier), .carrier_up_i (carrier_up), .period_act_i (period_act),
-    .cmp_a_i (cmp[CntWidth-1:0]), .cmp_b_i (cmp[2*CntWidth-1:CntWidth]), .cmp_c_i (cmp[3*CntWidth-1:2*CntWidth])
-  );
-
-  svpwm_core #(
-    .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
-    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol)
-  ) u_core (
-    .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
-    .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
-    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .upd_i (upd), .presc_i (presc), .period_i (period),
-    .dt_i (dt), .mp_i (mp), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
-    .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),
-    .pol_i (pol), .lock_i (lock),
-    .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o), .carrier_o (carrier),
-    .carrier_up_o (carrier_up), .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o),
-    .adc_trig_o (adc_trig_o), .sync_o (sync_o), .sector_o (sector), .cmp_o (cmp),
-    .period_o (period_act), .running_o (running_o), .sat_o (sat), .cfg_err_o (cfg_err),
-    .period_clamp_o (period_clamp), .freq_clamp_o (freq_clamp), .fault_o (fault),
-    .tripped_o (tripped_o), .locked_o (locked)
+    .fault_i (fault_i), .sync_i (sync_i), .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o),
+    .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o), .adc_trig_o (adc_trig_o),
+    .sync_o (sync_o), .running_o (running_o), .tripped_o (tripped_o)
   );
 
 endmodule

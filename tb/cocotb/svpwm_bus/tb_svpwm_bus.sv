@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Test harness: the full bus wrappers (Bus = 0 svpwm_axil, 1 svpwm_wb pipelined, 2 svpwm_wb classic)
 // with port names for cocotbext-axi ("s_axil_*") and cocotbext-wishbone ("wb_*"). The core is probed
-// hierarchically (gen_axil.u_dut.u_core / gen_wb.u_dut.u_core). Clock generated here.
+// hierarchically (gen_axil.u_dut.u_mmio.u_core / gen_wb.u_dut.u_mmio.u_core). Clock generated here.
 `timescale 1ns/1ps
 `default_nettype none
 

@@ -38,7 +38,7 @@ class TB:
         self.dut = dut
         self.kind = os.environ["SVPWM_BUS"]
         top = dut.gen_axil if self.kind == "axil" else dut.gen_wb
-        self.core = top.u_dut.u_core
+        self.core = top.u_dut.u_mmio.u_core
         self.bus = None
         self.rng = random.Random(3)
 

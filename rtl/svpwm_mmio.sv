@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: Apache-2.0
+// svpwm_mmio: svpwm_core behind a bus-agnostic register port -- svpwm_regs (generated from rdl/svpwm.rdl,
+// map in docs/registers.md) + svpwm_core. The bus wrappers (svpwm_axil, svpwm_wb) put their protocol
+// adapter in front of it. Every RW register field drives the core input of the same name; the core
+// samples its inputs at its sample points, so a write takes effect at an update point, never in the
+// middle of a carrier period.
+// Parameters:
+//   AddrWidth - byte address width of the register port (>= 7); addresses without a register read 0
+//   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
+//   The core's widths are fixed by the register map: CntWidth 16, PhaseWidth 34, FreqWidth 24,
+//   DtWidth 10 (change rdl/svpwm.rdl and regenerate to change them).
+// Latency: register port: a write is in the register the clock after req_i; read data the clock after.
+// Restrictions: see svpwm_regs (one access per clock, be_i byte lanes).
+`default_nettype none
+
+module svpwm_mmio #(
+  parameter int         AddrWidth = 8,
+  parameter int         MinPeriod = 48,
+  parameter int         FreqMax   = (1 << 23) - 1,
+  parameter logic [1:0] GatePol   = 2'b00
+) (
+  input  logic                 clk_i,              // core and bus clock
+  input  logic                 rst_ni,             // asynchronous reset, active low
+  // register port (from svpwm_axil_if / svpwm_wb_if)
+  input  logic                 req_i,
+  input  logic                 we_i,
+  input  logic [AddrWidth-1:0] addr_i,
+  input  logic [31:0]          wdata_i,
+  input  logic [3:0]           be_i,
+  output logic [31:0]          rdata_o,
+  // inverter side
+  input  logic                 fault_i,            // trip input, asynchronous, active high
+  input  logic                 sync_i,             // another core's sync_o (same clock), CTRL.sync_en
+  output logic [2:0]           gate_hi_o,          // {c, b, a} high-side gate pins (polarity applied)
+  output logic [2:0]           gate_lo_o,          // {c, b, a} low-side gate pins (polarity applied)
+  output logic [2:0]           pole_o,             // {c, b, a} modulator states before dead time
+  output logic                 valley_o,           // pulse: first clock of a carrier period
+  output logic                 peak_o,             // pulse: carrier peak
+  output logic                 update_o,           // pulse: new compare values active from this clock
+  output logic                 adc_trig_o,         // pulse: ADC trigger (CTRL.adc_trig)
+  output logic                 sync_o,             // pulse at each valley, for other cores' sync_i
+  output logic                 running_o,          // gates modulating (e.g. an LED)
+  output logic                 tripped_o           // safe state forced (e.g. an LED)
+);
+
+  // Field widths of the register map (rdl/svpwm.rdl) = the core's width parameters.
+  localparam int CntWidth   = 16;
+  localparam int PhaseWidth = 34;
+  localparam int FreqWidth  = 24;
+  localparam int DtWidth    = 10;
+
+  // ---- register block <-> core -------------------------------------------------------------------
+  logic                        en, sync_en, trip_cbc, safe_lo, lock, fault_clear;
+  logic [1:0]                  pol, upd, dpwm, adc_trig;
+  logic [2:0]                  mode;
+  logic [FreqWidth-1:0]        freq;
+  logic [15:0]                 m, theta, v1, v2, vf_boost, vf_slope, vf_mmax;
+  logic [CntWidth-1:0]         period, carrier, period_act;
+  logic [DtWidth-1:0]          dt, mp;
+  logic [7:0]                  presc;
+  logic                        carrier_up, sat, cfg_err, period_clamp, freq_clamp, fault, locked;
+  logic [2:0]                  sector;
+  logic [3*CntWidth-1:0]       cmp;
+
+  svpwm_regs #(
+    .AddrWidth (AddrWidth),
+    .GatePol   (GatePol)
+  ) u_regs (
+    .clk_i (clk_i), .rst_ni (rst_ni),
+    .req_i (req_i), .we_i (we_i), .addr_i (addr_i), .wdata_i (wdata_i), .be_i (be_i), .rdata_o (rdata_o),
+    .ctrl_en_o (en), .ctrl_sync_en_o (sync_en), .ctrl_trip_cbc_o (trip_cbc), .ctrl_safe_lo_o (safe_lo),
+    .ctrl_pol_o (pol), .ctrl_lock_o (lock), .ctrl_fault_clear_o (fault_clear), .ctrl_mode_o (mode),
+    .ctrl_upd_o (upd), .ctrl_dpwm_o (dpwm), .ctrl_adc_trig_o (adc_trig),
+    .freq_o (freq), .m_o (m), .theta_o (theta), .v1_o (v1), .v2_o (v2),
+    .vf_boost_o (vf_boost), .vf_slope_o (vf_slope), .vf_mmax_o (vf_mmax),
+    .period_o (period), .dt_o (dt), .mp_o (mp), .presc_o (presc),
+    .status_running_i (running_o), .status_sat_i (sat), .status_cfg_err_i (cfg_err),
+    .status_period_clamp_i (period_clamp), .status_freq_clamp_i (freq_clamp), .status_fault_i (fault),
+    .status_tripped_i (tripped_o), .status_locked_i (locked), .status_sector_i (sector),
+    .carrier_count_i (carrier), .carrier_up_i (carrier_up), .period_act_i (period_act),
+    .cmp_a_i (cmp[CntWidth-1:0]), .cmp_b_i (cmp[2*CntWidth-1:CntWidth]), .cmp_c_i (cmp[3*CntWidth-1:2*CntWidth])
+  );
+
+  svpwm_core #(
+    .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
+    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol)
+  ) u_core (
+    .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
+    .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
+    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .upd_i (upd), .presc_i (presc), .period_i (period),
+    .dt_i (dt), .mp_i (mp), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
+    .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),
+    .pol_i (pol), .lock_i (lock),
+    .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o), .carrier_o (carrier),
+    .carrier_up_o (carrier_up), .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o),
+    .adc_trig_o (adc_trig_o), .sync_o (sync_o), .sector_o (sector), .cmp_o (cmp),
+    .period_o (period_act), .running_o (running_o), .sat_o (sat), .cfg_err_o (cfg_err),
+    .period_clamp_o (period_clamp), .freq_clamp_o (freq_clamp), .fault_o (fault),
+    .tripped_o (tripped_o), .locked_o (locked)
+  );
+
+endmodule
+
+`default_nettype wire

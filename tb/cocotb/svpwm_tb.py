@@ -7,6 +7,7 @@ model's time base (cycle 0 = first clock with en_i = 1) for comparison with svpw
 """
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -14,6 +15,7 @@ import cocotb
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 from cocotb.utils import get_sim_time
 
+from svpwm_model.analysis import check_legs, check_table_i
 from svpwm_model.core import CoreModel, Inputs, Run
 
 CLK_NS = 10
@@ -190,12 +192,34 @@ class CoreTB:
         assert rtl.pole_edges == exp.pole_edges, _diff("pole edges", rtl.pole_edges, exp.pole_edges)
         assert rtl.gate_edges == exp.gate_edges, _diff("gate edges", rtl.gate_edges, exp.gate_edges)
 
+    def check_edges(self, rtl: RtlRun, exp: Run, stop=None, table_i: bool = True, dt_of=None):
+        """The checks beyond bit-exactness, from the RTL's own edges: the in-RTL pin checker, every period
+        against Table I (single-update SVPWM only: one symmetric seven-segment pattern per period) and
+        the legs for shoot-through, dead time and short pulses. Returns the Table I result (or None)."""
+        self.check_harness()
+        seq = None
+        if table_i:
+            seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
+            assert seq.ok, "; ".join(seq.failures[:5])
+
+        legs = check_legs(rtl.gate_edges, dt_of or dead_time_at(rtl.valley, exp.dt), forced_off=[exp.end - 1] if stop is not None else [])
+        assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
+        return seq
+
     def check_harness(self) -> None:
         d = self.dut
         assert int(d.shoot_through_count.value) == 0, "in-RTL checker: both gates of a leg on"
         assert int(d.dead_time_violations.value) == 0, "in-RTL checker: dead time violated"
         assert int(d.short_pulse_count.value) == 0, "in-RTL checker: gate pulse shorter than max(dt, mp)"
         assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
+
+
+def dead_time_at(valleys: list[int], dts: list[int]) -> Callable[[int], int]:
+    """The dead time in force at a cycle: the one of the carrier period containing it."""
+    def at(c: int) -> int:
+        k = bisect.bisect_right(valleys, c) - 1
+        return dts[min(max(k, 0), len(dts) - 1)]
+    return at
 
 
 def _squash(ev: list[tuple[int, int]], initial: int = 0) -> list[tuple[int, int]]:

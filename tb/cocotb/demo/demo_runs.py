@@ -30,7 +30,6 @@ gate_lo_a/b/c, pole_a/b/c.
 """
 from __future__ import annotations
 
-import bisect
 import json
 import math
 import os
@@ -45,7 +44,7 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CoreTB
+from svpwm_tb import CoreTB, dead_time_at
 
 F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
@@ -153,13 +152,7 @@ async def run_point(dut, pt: dict) -> None:
                           failures=len(seq.failures), first_failures=seq.failures[:5])
     if not seq.ok:
         fails.append("Table I: " + ("; ".join(seq.failures[:3]) or "no period checked"))
-    valleys = rtl.valley
-
-    def dt_at(c):
-        k = bisect.bisect_right(valleys, c) - 1
-        return exp.dt[min(max(k, 0), len(exp.dt) - 1)]
-
-    legs = check_legs(rtl.gate_edges, dt_at)
+    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
     res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
                        short_pulse=len(legs.short_pulse))
     if not legs.ok:

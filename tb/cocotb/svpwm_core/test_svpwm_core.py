@@ -17,7 +17,7 @@ import cocotb
 
 from simrun import REPO, run_sim
 from svpwm_model import fixed
-from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
+from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
 
@@ -40,18 +40,7 @@ def const(u: Inputs):
 async def check_run(tb: CoreTB, idle: Inputs, inputs, n: int, stop=None, dt_of=None):
     rtl, exp = await tb.run(idle, inputs, n, stop)
     tb.compare(rtl, exp)
-    tb.check_harness()
-    seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
-    assert seq.ok, "; ".join(seq.failures[:5])
-    valleys = rtl.valley
-
-    def dt_at(c):
-        import bisect
-        k = bisect.bisect_right(valleys, c) - 1
-        return exp.dt[min(max(k, 0), len(exp.dt) - 1)]
-
-    legs = check_legs(rtl.gate_edges, dt_of or dt_at, forced_off=[exp.end - 1] if stop is not None else [])
-    assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
+    seq = tb.check_edges(rtl, exp, stop, dt_of=dt_of)
     err, _ = duty_error(exp)
     assert err <= 1.0, f"duty error {err:.3f} counts > 1 count vs the ideal SVPWM"
     tb.dut._log.info("%d periods, %d edges, Table I ok (%d with skipped states), worst |C - ideal| = %.3f",

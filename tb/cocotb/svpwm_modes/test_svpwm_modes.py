@@ -21,7 +21,6 @@ import cocotb
 
 from simrun import REPO, run_sim
 from svpwm_model import fixed
-from svpwm_model.analysis import check_legs, check_table_i
 from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
 
@@ -52,19 +51,7 @@ async def check(tb: CoreTB, idle: Inputs, inputs, n: int, *, peak_inputs=None, t
                 stop=None):
     rtl, exp = await tb.run(idle, inputs, n, stop, peak_inputs)
     tb.compare(rtl, exp)
-    tb.check_harness()
-    if table_i:          # one symmetric seven-segment pattern per period (single update, SVPWM)
-        seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
-        assert seq.ok, "; ".join(seq.failures[:5])
-    dts = exp.dt
-
-    def dt_at(c):
-        import bisect
-        k = bisect.bisect_right(rtl.valley, c) - 1
-        return dts[min(max(k, 0), len(dts) - 1)]
-
-    legs = check_legs(rtl.gate_edges, dt_at, forced_off=[exp.end - 1] if stop is not None else [])
-    assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
+    tb.check_edges(rtl, exp, stop, table_i=table_i)
     assert exp.updates, "no update"
     tb.dut._log.info("%d periods, %d updates, %d gate edges, sat in %d", n, len(exp.updates),
                      len(rtl.gate_edges), sum(u.sat for u in exp.updates))

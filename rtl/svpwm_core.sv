@@ -7,7 +7,7 @@
 // Parameters:
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
-//   FreqWidth  - signed frequency word width (<= PhaseWidth)
+//   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
@@ -98,7 +98,7 @@ module svpwm_core #(
   localparam int SampleLead     = 2;    // formal/core.sby cuts the compute pipeline: no latency to cover
   localparam int MinPeriodFloor = 4;
 `else
-  localparam int SampleLead     = 38;   // duty calculator 33 + minimum pulse 4 + load 1
+  localparam int SampleLead     = 39;   // duty calculator 34 + minimum pulse 4 + load 1
   localparam int MinPeriodFloor = SampleLead + 4;
 `endif
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
@@ -186,6 +186,7 @@ module svpwm_core #(
   end
 
   assign period_under   = period_i < period_low_q;
+
   assign period_clamped = period_under ? period_low_q : period_i;
 
   assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -FreqWidth'(FreqMax);
@@ -198,10 +199,29 @@ module svpwm_core #(
 
   logic [CntWidth-1:0] period_next_d, period_next_q;
   logic [DtWidth-1:0]  dt_next_d, dt_next_q, dt_d, dt_q, mp_next_d, mp_next_q, mp_d, mp_q;
+
+  // the clamped period is registered too (one clock after the port), and so is the comparison that forces
+  // an update (valid in every clock but the one after a load, i.e. at every sample point): the sample
+  // strobes then reach the ~150 register enables they drive straight from flip-flops
+  logic [CntWidth-1:0] period_clamped_q;
+  logic                period_under_q, chg_q;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      period_clamped_q <= CntWidth'(MinPeriod);
+      period_under_q   <= 1'b0;
+      chg_q            <= 1'b0;
+    end else begin
+      period_clamped_q <= period_clamped;
+      period_under_q   <= period_under;
+      chg_q            <= period_clamped != period_act || dt_cfg_q != dt_q || mp_cfg_q != mp_q;
+    end
+  end
+
   logic signed [FreqWidth-1:0] freq_d, freq_q;
   logic                period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
 
-  assign period_load = run ? period_next_q : period_clamped;
+  assign period_load = run ? period_next_q : period_clamped;     // idle: the port (a start uses it at once)
 
   svpwm_carrier #(.CntWidth(CntWidth)) u_carrier (
     .clk_i      (clk_i),
@@ -239,7 +259,7 @@ module svpwm_core #(
 
   assign opp_v     = vps && upd_q != UpdPeak;
   assign opp_p     = pps && upd_q != UpdValley;
-  assign forced    = vps && (period_clamped != period_act || dt_use_q != dt_q || mp_use_q != mp_q);
+  assign forced    = vps && chg_q;      // (period_clamped_q != period_act || dt_use_q != dt_q || mp_use_q != mp_q)
   assign event_now = ((opp_v || opp_p) && cnt_q == '0) || forced;
 
   always_comb begin
@@ -402,10 +422,10 @@ module svpwm_core #(
       freq_clamp_d   = freq_over;
     end
     if (!run || vps) begin                // period, dead time, minimum pulse: before every valley
-      period_next_d  = period_clamped;
+      period_next_d  = period_clamped_q;
       dt_next_d      = dt_use_q;
       mp_next_d      = mp_use_q;
-      period_clamp_d = period_under;
+      period_clamp_d = period_under_q;
     end
     if (start_q) pending_d = 1'b1;
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration

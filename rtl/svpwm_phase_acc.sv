@@ -3,9 +3,11 @@
 // AVR495 sec. 4.3: theta' is integrated and confined to [0, 60 deg); the sector is a modulo-6 counter
 // stepped each time theta' wraps, so no division by 6 is needed. Verma's sector + angle + fraction word
 // is the same idea: here the angle is a PhaseWidth-bit binary fraction of 60 deg.
-// Parameters: PhaseWidth - angle fraction bits; FreqWidth - signed step width (FreqWidth <= PhaseWidth).
+// Parameters: PhaseWidth - angle fraction bits; FreqWidth - signed step width (FreqWidth < PhaseWidth).
 // One LSB of step_i is 60 deg / 2^PhaseWidth per clock, i.e. f_out = step * f_clk / (6 * 2^PhaseWidth).
 // Latency: none, sector_o / angle_o are the registers. Negative steps rotate backwards, zero stands still.
+// Timing: only the low FreqWidth bits are one carry chain; the upper bits (angle + 0 / +1 / -1) and the
+// sector (wrap at 60 deg / below 0) are formed beside it and selected by its carry (carry-select).
 `default_nettype none
 
 module svpwm_phase_acc #(
@@ -20,26 +22,39 @@ module svpwm_phase_acc #(
   output logic [PhaseWidth-1:0]       angle_o    // theta' / 60 deg as an unsigned binary fraction
 );
 
-  if (FreqWidth < 2 || FreqWidth > PhaseWidth) begin : gen_bad_width
-    initial $fatal(1, "svpwm_phase_acc: need 2 <= FreqWidth <= PhaseWidth, got %0d / %0d",
+  if (FreqWidth < 2 || FreqWidth >= PhaseWidth) begin : gen_bad_width
+    initial $fatal(1, "svpwm_phase_acc: need 2 <= FreqWidth < PhaseWidth, got %0d / %0d",
                    FreqWidth, PhaseWidth);
   end
 
+  localparam int HiWidth = PhaseWidth - FreqWidth;
+
   logic [PhaseWidth-1:0] angle_d, angle_q;
-  logic [2:0]            sector_d, sector_q;
-  logic [PhaseWidth+1:0] sum;    // two's complement, PhaseWidth+2 bits: never overflows
+  logic [2:0]            sector_d, sector_q, sec_up, sec_dn;
+  logic [FreqWidth:0]    lo_sum;                 // low bits + step bits, carry out in the MSB
+  logic [HiWidth-1:0]    hi, hi_inc, hi_dec, hi_new;
+  logic                  neg, c, wrap_up, wrap_dn;
+
+  // angle + sign-extended step = {hi + ext + c, lo_sum}, ext = -1 for a negative step, else 0
+  assign neg     = step_i[FreqWidth-1];
+  assign lo_sum  = {1'b0, angle_q[FreqWidth-1:0]} + {1'b0, step_i};
+  assign c       = lo_sum[FreqWidth];
+  assign hi      = angle_q[PhaseWidth-1:FreqWidth];
+  assign hi_inc  = hi + 1'b1;
+  assign hi_dec  = hi - 1'b1;
+  assign hi_new  = (neg == c) ? hi : c ? hi_inc : hi_dec;
+  assign wrap_up = !neg && c && (&hi);           // reached 60 deg: next sector
+  assign wrap_dn = neg && !c && (hi == '0);      // went below 0: previous sector
+  assign sec_up  = (sector_q >= 3'd5) ? 3'd0 : sector_q + 3'd1;
+  assign sec_dn  = (sector_q == 3'd0) ? 3'd5 : sector_q - 3'd1;
 
   always_comb begin
-    sum      = {2'b00, angle_q} + {{(PhaseWidth + 2 - FreqWidth){step_i[FreqWidth-1]}}, step_i};
     angle_d  = angle_q;
     sector_d = sector_q;
     if (run_i) begin
-      angle_d = sum[PhaseWidth-1:0];
-      if (sum[PhaseWidth+1]) begin          // went below 0: previous sector
-        sector_d = (sector_q == 3'd0) ? 3'd5 : sector_q - 3'd1;
-      end else if (sum[PhaseWidth]) begin   // reached 60 deg: next sector
-        sector_d = (sector_q >= 3'd5) ? 3'd0 : sector_q + 3'd1;
-      end
+      angle_d = {hi_new, lo_sum[FreqWidth-1:0]};
+      if (wrap_dn)      sector_d = sec_dn;
+      else if (wrap_up) sector_d = sec_up;
     end
   end
 

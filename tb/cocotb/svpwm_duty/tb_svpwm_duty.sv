@@ -39,7 +39,7 @@ module tb_svpwm_duty #(
   output logic [2:0]            chk_o
 );
 
-  localparam int BusyClocks = 32;   // DutyLatency - 1
+  localparam int BusyClocks = 33;   // DutyLatency - 1
 
   initial clk = 1'b0;
   always #5 clk = ~clk;

@@ -48,7 +48,7 @@ from simrun import REPO, run_sim
 from svpwm_model import fixed
 
 CLK_NS = 10
-LATENCY = 33                 # clocks: start_i in cycle c -> done_o in cycle c + LATENCY (RTL DutyLatency)
+LATENCY = 34                 # clocks: start_i in cycle c -> done_o in cycle c + LATENCY (RTL DutyLatency)
 P_MIN = 48                   # shortest period exercised
 FSHIFT = fixed.FREQ_WIDTH - 17
 M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexagon vertex

@@ -64,6 +64,7 @@ module svpwm_duty #(
 
   // ---- state -------------------------------------------------------------------------------------
   logic [5:0]            st_d, st_q;                        // 0 idle, 1..LastSt steps
+  logic                  idle_d, idle_q;                    // st_q == 0, registered
   logic [2:0]            swq_d, swq_q;                      // projection index of the sector (AB, DQ)
   logic [2:0]            mode_d, mode_q, sec0_d, sec0_q, sector_d, sector_q, sector_out_d, sector_out_q;
   logic [1:0]            dpwm_d, dpwm_q;
@@ -299,7 +300,7 @@ module svpwm_duty #(
   always_comb begin
     {theta6_hi, theta6_lo} = {theta_i, 2'b00} + {1'b0, theta_i, 1'b0};   // 6 theta = sector.a16
     a16_in = (mode_i == ModePolar || mode_i == ModeDq) ? theta6_lo : angle_i;
-    u16_in = (a16_in >= 16'h8000) ? a16_in - 16'h8000 : 16'h8000 - a16_in;   // <= 0x8000
+    u16_in = a16_in[15] ? {1'b0, a16_in[14:0]} : 16'h8000 - a16_in;          // <= 0x8000
     vf_t   = {9'd0, boost_q, 1'b1} + {1'b0, prod_q[31:7]};   // boost + round(p >> 8), one chain
     vf_sum = vf_t[25:1];
     tsum   = t1_q + t2_q;
@@ -356,24 +357,23 @@ module svpwm_duty #(
     sat_out_d    = sat_out_q;
     err_out_d    = err_out_q;
     done_d       = 1'b0;
+    if (idle_q) begin                   // idle: the input registers follow the inputs, so the start clock
+      mode_d  = mode_i;                 // takes them without start_i driving ~200 enables
+      sec0_d  = (mode_i == ModePolar || mode_i == ModeDq) ? theta6_hi : sector_i;
+      a16_d   = a16_in;
+      u16_d   = u16_in;                 // |theta' - 30 deg|
+      m_d     = m_i;
+      fa_d    = fabs_i;
+      boost_d = vf_boost_i;
+      slope_d = vf_slope_i;
+      mmax_d  = vf_mmax_i;
+      v1_d    = v1_i;
+      v2_d    = v2_i;
+      dpwm_d  = dpwm_i;
+      p_d     = period_i;
+    end
     unique case (st_q)
-      6'd0: begin
-        if (start_i) begin
-          mode_d  = mode_i;
-          sec0_d  = (mode_i == ModePolar || mode_i == ModeDq) ? theta6_hi : sector_i;
-          a16_d   = a16_in;
-          u16_d   = u16_in;                // |theta' - 30 deg|
-          m_d     = m_i;
-          fa_d    = fabs_i;
-          boost_d = vf_boost_i;
-          slope_d = vf_slope_i;
-          mmax_d  = vf_mmax_i;
-          v1_d    = v1_i;
-          v2_d    = v2_i;
-          dpwm_d  = dpwm_i;
-          p_d     = period_i;
-        end
-      end
+      6'd0: ;                                                   // idle: inputs taken above
       6'd2:  r0_d = rom_data;                                   // R[j]
       6'd3: begin                                               // AB: X, Y, Z from sqrt3/2 v_alpha
         if (ab) begin
@@ -496,6 +496,7 @@ module svpwm_duty #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       st_q         <= '0;
+      idle_q       <= 1'b1;
       mode_q       <= '0;
       sec0_q       <= '0;
       swq_q        <= '0;
@@ -543,6 +544,7 @@ module svpwm_duty #(
       done_q       <= 1'b0;
     end else begin
       st_q         <= st_d;
+      idle_q       <= idle_d;
       mode_q       <= mode_d;
       sec0_q       <= sec0_d;
       swq_q        <= swq_d;
@@ -597,6 +599,7 @@ module svpwm_duty #(
     prod_q <= prod_d;
   end
 
+  assign idle_d   = st_d == 6'd0;
   assign busy_o   = st_q != 6'd0;
   assign done_o   = done_q;
   assign sector_o = sector_out_q;

@@ -7,6 +7,7 @@
 // Parameters:
 //   AddrWidth - byte address width of the register port (>= 7); addresses without a register read 0
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
+//   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
 //   The core's widths are fixed by the register map: CntWidth 16, PhaseWidth 34, FreqWidth 24,
 //   DtWidth 10 (change rdl/svpwm.rdl and regenerate to change them).
 // Latency: register port: a write is in the register the clock after req_i; read data the clock after.
@@ -17,7 +18,8 @@ module svpwm_mmio #(
   parameter int         AddrWidth = 8,
   parameter int         MinPeriod = 48,
   parameter int         FreqMax   = (1 << 23) - 1,
-  parameter logic [1:0] GatePol   = 2'b00
+  parameter logic [1:0] GatePol   = 2'b00,
+  parameter int         ClkHz     = 0
 ) (
   input  logic                 clk_i,              // core and bus clock
   input  logic                 rst_ni,             // asynchronous reset, active low
@@ -64,7 +66,8 @@ module svpwm_mmio #(
 
   svpwm_regs #(
     .AddrWidth (AddrWidth),
-    .GatePol   (GatePol)
+    .GatePol   (GatePol),
+    .ClkHz     (ClkHz)
   ) u_regs (
     .clk_i (clk_i), .rst_ni (rst_ni),
     .req_i (req_i), .we_i (we_i), .addr_i (addr_i), .wdata_i (wdata_i), .be_i (be_i), .rdata_o (rdata_o),

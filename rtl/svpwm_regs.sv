@@ -4,7 +4,8 @@
 // per clock with req_i; RW fields drive the svpwm_core inputs, RO fields read the core's outputs.
 // Parameters:
 //   AddrWidth - byte address width (>= 7); every address bit is decoded, addr_i[1:0] ignored
-//   GatePol - reset value of the field(s) marked rst_param = "GatePol" (RDL reset 0)
+//   GatePol - reset value of CTRL.pol (rst_param; RDL default 0)
+//   ClkHz - int >= 0, value of CLK_HZ.clk_hz (rst_param; RDL default 0)
 // Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid
 // the clock after a read request and holds until the next read request.
 // Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore
@@ -13,7 +14,8 @@
 
 module svpwm_regs #(
   parameter int AddrWidth = 8,
-  parameter logic [1:0] GatePol = 2'h0
+  parameter logic [1:0] GatePol = 2'h0,
+  parameter int ClkHz = 0
 ) (
   input  logic                 clk_i,     // clock
   input  logic                 rst_ni,    // asynchronous reset, active low
@@ -66,6 +68,9 @@ module svpwm_regs #(
   if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
     initial $fatal(1, "svpwm_regs: AddrWidth must be 7..32, got %0d", AddrWidth);
   end
+  if (ClkHz < 0) begin : gen_bad_clk_hz
+    initial $fatal(1, "svpwm_regs: ClkHz must be >= 0, got %0d", ClkHz);
+  end
 
   // word index of each register
   localparam logic [AddrWidth-3:0] IdxId = (AddrWidth-2)'(0);
@@ -90,6 +95,7 @@ module svpwm_regs #(
   localparam logic [AddrWidth-3:0] IdxCmpA = (AddrWidth-2)'(19);
   localparam logic [AddrWidth-3:0] IdxCmpB = (AddrWidth-2)'(20);
   localparam logic [AddrWidth-3:0] IdxCmpC = (AddrWidth-2)'(21);
+  localparam logic [AddrWidth-3:0] IdxClkHz = (AddrWidth-2)'(22);
 
   logic [AddrWidth-3:0] idx;
   logic [31:0]          wmask;
@@ -232,7 +238,7 @@ module svpwm_regs #(
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h2, 16'h0};
+  assign rd_version = {16'h2, 16'h1};
   logic [31:0] rd_config;
   assign rd_config = {8'h22, 8'h18, 8'h10, 8'hA};
   logic [31:0] rd_ctrl;
@@ -273,6 +279,8 @@ module svpwm_regs #(
   assign rd_cmp_b = {16'h0, cmp_b_i};
   logic [31:0] rd_cmp_c;
   assign rd_cmp_c = {16'h0, cmp_c_i};
+  logic [31:0] rd_clk_hz;
+  assign rd_clk_hz = {32'(ClkHz)};
   logic [31:0] rdata_d, rdata_q;
 
   always_comb begin
@@ -301,6 +309,7 @@ module svpwm_regs #(
         IdxCmpA: rdata_d = rd_cmp_a;
         IdxCmpB: rdata_d = rd_cmp_b;
         IdxCmpC: rdata_d = rd_cmp_c;
+        IdxClkHz: rdata_d = rd_clk_hz;
         default: rdata_d = '0;  // no register here
       endcase
     end

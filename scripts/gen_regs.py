@@ -15,6 +15,10 @@ Supported field kinds (anything else in the RDL is refused):
   rw     sw=rw hw=r                  storage, drives a core input
   w1s    sw=rw hw=r onwrite=woset    storage, written ones set it, sticky until reset
   pulse  sw=w  hw=r singlepulse      a one-clock pulse for every written one, reads 0
+
+rst_param (project property) names an svpwm_regs parameter that gives a field's reset value (const
+fields: its value); the RDL reset is the parameter's default. The parameter of a 32-bit field is an
+`int` (checked >= 0 at elaboration, e.g. ClkHz), of a narrower field a `logic [w-1:0]` (e.g. GatePol).
 """
 from __future__ import annotations
 
@@ -148,7 +152,8 @@ def render_md(top, regs: list[Reg], tmp: Path) -> str:
     for r in regs:
         fl = "; ".join(f"[{f.msb}:{f.lsb}] {f.name} {_kind_text(f)}"
                        + (" signed" if f.signed else "")
-                       + (f", reset = {f.rst_param}" if f.rst_param else "") for f in r.fields)
+                       + (f", {'value' if f.kind == 'const' else 'reset'} = {f.rst_param}" if f.rst_param else "")
+                       for f in r.fields)
         lines.append(f"| 0x{r.addr:02X} | {r.name} | {_access(r)} | 0x{_reset(r):08X} | {fl} |")
     return "\n".join(lines) + "\n\n" + out.read_text()
 
@@ -216,13 +221,20 @@ def _camel(name: str) -> str:
     return "".join(p.capitalize() for p in name.lower().split("_"))
 
 
+def _snake(name: str) -> str:
+    return "".join("_" + c.lower() if c.isupper() and i else c.lower() for i, c in enumerate(name))
+
+
 def render_sv(regs: list[Reg], size: int) -> str:
     min_aw = max(3, (size - 1).bit_length())
-    params = {}
+    params: dict[str, tuple[int, int, list[str], bool]] = {}   # name -> (width, default, users, const)
     for r in regs:
         for f in r.fields:
             if f.rst_param:
-                params[f.rst_param] = (f.width, f.reset)
+                w, v, users, const = params.setdefault(f.rst_param, (f.width, f.reset, [], f.kind == "const"))
+                if (w, v, const) != (f.width, f.reset, f.kind == "const"):
+                    raise SystemExit(f"gen_regs: rst_param {f.rst_param}: fields differ in width, reset or kind")
+                users.append(f"{r.name}.{f.name}")
     store = [(r, f) for r in regs for f in r.fields if f.kind in ("rw", "w1s", "pulse")]
     status = [(r, f) for r in regs for f in r.fields if f.kind == "status"]
     used_wbits = sorted({b for r, f in store for b in range(f.lsb, f.msb + 1)})
@@ -247,16 +259,19 @@ def render_sv(regs: list[Reg], size: int) -> str:
          "// Parameters:",
          f"//   AddrWidth - byte address width (>= {min_aw}); every address bit is decoded, addr_i[1:0] ignored",
          ]
-    for p, (w, v) in params.items():
-        L.append(f"//   {p} - reset value of the field(s) marked rst_param = \"{p}\" (RDL reset {v})")
+    for p, (w, v, users, const) in params.items():
+        what = "value" if const else "reset value"
+        kind = "int >= 0, " if w == DATA_WIDTH else ""
+        L.append(f"//   {p} - {kind}{what} of {', '.join(users)} (rst_param; RDL default {v})")
     L += ["// Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid",
           "// the clock after a read request and holds until the next read request.",
           "// Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore",
           "// writes; addresses without a register read 0 and ignore writes; pulse fields read 0.",
           "`default_nettype none", "", "module svpwm_regs #(",
           f"  parameter int AddrWidth = {max(min_aw, 8)}" + ("," if params else "")]
-    for i, (p, (w, v)) in enumerate(params.items()):
-        L.append(f"  parameter logic {vec(w)} {p} = {w}'h{v:X}" + ("," if i < len(params) - 1 else ""))
+    for i, (p, (w, v, _, _)) in enumerate(params.items()):
+        decl = f"parameter int {p} = {v}" if w == DATA_WIDTH else f"parameter logic {vec(w)} {p} = {w}'h{v:X}"
+        L.append(f"  {decl}" + ("," if i < len(params) - 1 else ""))
     L += [") (",
           "  input  logic                 clk_i,     // clock",
           "  input  logic                 rst_ni,    // asynchronous reset, active low",
@@ -279,7 +294,12 @@ def render_sv(regs: list[Reg], size: int) -> str:
     L += [");", "",
           f"  if (AddrWidth < {min_aw} || AddrWidth > 32) begin : gen_bad_addr_width",
           f"    initial $fatal(1, \"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d\", AddrWidth);",
-          "  end", "",
+          "  end"]
+    for p, (w, _, _, _) in params.items():
+        if w == DATA_WIDTH:
+            L += [f"  if ({p} < 0) begin : gen_bad_{_snake(p)}",
+                  f"    initial $fatal(1, \"svpwm_regs: {p} must be >= 0, got %0d\", {p});", "  end"]
+    L += ["",
           "  // word index of each register"]
     for r in regs:
         L.append(f"  localparam logic [AddrWidth-3:0] Idx{_camel(r.name)} = (AddrWidth-2)'({r.addr // 4});")
@@ -317,8 +337,10 @@ def render_sv(regs: list[Reg], size: int) -> str:
         for f in sorted(r.fields, key=lambda f: f.lsb):
             if f.lsb > pos:
                 parts.append(f"{f.lsb - pos}'h0")
-            if f.kind == "const":
-                parts.append(f.rst_param if f.rst_param else f"{f.width}'h{f.reset:X}")
+            if f.kind == "const" and f.rst_param:
+                parts.append(f"{f.width}'({f.rst_param})" if f.width == DATA_WIDTH else f.rst_param)
+            elif f.kind == "const":
+                parts.append(f"{f.width}'h{f.reset:X}")
             elif f.kind == "status":
                 parts.append(_port(r, f))
             elif f.kind == "pulse":

@@ -2,15 +2,19 @@
 # SPDX-License-Identifier: Apache-2.0
 """svpwmctl: control an svpwm iCE40 board (iCEBreaker / iCEstick) over its UART.
 
-Protocol (fpga/ice40/README.md, fpga/ice40/common/uart_reg_bridge.sv), 115200 8N1:
-  write  'W' addr d0 d1 d2 d3 chk   -> 'K'        (d0 = LSB; chk makes the frame's byte sum 0 mod 256)
+Registers: the generated register map (docs/registers.md; names, byte offsets and fields from
+model/svpwm_model/regmap.py). Protocol (fpga/ice40/README.md, uart_reg_bridge.sv), 115200 8N1:
+  write  'W' addr d0 d1 d2 d3 chk   -> 'K'        (addr = byte offset, d0 = LSB; chk makes the byte sum 0)
   read   'R' addr chk               -> d0 d1 d2 d3 chk
   a frame with a bad checksum       -> 'N'
+Physical units use the core clock the board states in CLK_HZ (--clk-hz when it reads 0) and the
+widths in CONFIG; values out of range are refused, never clamped.
 
 Examples:
-  svpwmctl.py --port /dev/ttyUSB1 status
-  svpwmctl.py -p /dev/ttyUSB1 set-freq 50 && svpwmctl.py -p /dev/ttyUSB1 set-m 0.9 && ... start
-  svpwmctl.py -p /dev/ttyUSB1 set-period --fsw 20000 ; svpwmctl.py -p /dev/ttyUSB1 set-dt 1.5
+  svpwmctl.py -p /dev/ttyUSB1 status
+  svpwmctl.py -p /dev/ttyUSB1 set-dt 1.0 ; svpwmctl.py -p /dev/ttyUSB1 set-period --fsw 20000
+  svpwmctl.py -p /dev/ttyUSB1 set-freq 50 ; svpwmctl.py -p /dev/ttyUSB1 set-m 0.9 ; ... start
+  svpwmctl.py -p /dev/ttyUSB1 read CTRL.mode ; svpwmctl.py -p /dev/ttyUSB1 write VF_MMAX 0x8000
 The port can also be given as $SVPWM_PORT. `svpwmctl.py COMMAND --help` for each command.
 """
 from __future__ import annotations
@@ -19,17 +23,20 @@ import argparse
 import os
 import sys
 from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "model"))
+from svpwm_model import regmap as R  # noqa: E402  (generated from rdl/svpwm.rdl)
 
 CMD_WRITE, CMD_READ, RSP_ACK, RSP_NAK = 0x57, 0x52, 0x4B, 0x4E
-
-# Minimal register set (to be replaced by the SystemRDL register map): name -> (address, writable)
-REGS: dict[str, tuple[int, bool]] = {
-    "ID": (0x00, False), "VERSION": (0x01, False), "CONFIG": (0x02, False), "CLK_HZ": (0x03, False),
-    "CTRL": (0x04, True), "FREQ": (0x05, True), "M": (0x06, True), "PERIOD": (0x07, True),
-    "DT": (0x08, True), "STATUS": (0x09, False),
-}
-ID_VALUE = 0x5356_5057
-CTRL_EN, CTRL_FAULT_CLR = 0x1, 0x2
+ID_VALUE = R.ID.reset
+MAP_MAJOR = R.VERSION.field("major").reset
+MIN_PERIOD = 48          # MinPeriod of the board designs (svpwm_ice40_sys default; not readable)
+# CTRL enumerations (docs/registers.md, CTRL.mode / .dpwm / .upd)
+MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
+DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
+UPD = {"valley": 0, "peak": 1, "both": 2}
 
 
 class ProtocolError(RuntimeError):
@@ -40,20 +47,24 @@ class NoAnswer(ProtocolError):
     """The board did not answer in time."""
 
 
+# --------------------------------------------------------------------------- frames
 def checksum(data: bytes) -> int:
     return (-sum(data)) & 0xFF
 
 
-def encode_write(addr: int, value: int) -> bytes:
+def _check_addr(addr: int) -> None:
     if not 0 <= addr <= 0xFF:
         raise ValueError(f"address {addr} out of range 0..255")
+
+
+def encode_write(addr: int, value: int) -> bytes:
+    _check_addr(addr)
     body = bytes([CMD_WRITE, addr]) + (value & 0xFFFF_FFFF).to_bytes(4, "little")
     return body + bytes([checksum(body)])
 
 
 def encode_read(addr: int) -> bytes:
-    if not 0 <= addr <= 0xFF:
-        raise ValueError(f"address {addr} out of range 0..255")
+    _check_addr(addr)
     body = bytes([CMD_READ, addr])
     return body + bytes([checksum(body)])
 
@@ -73,22 +84,66 @@ def decode_write_reply(reply: bytes) -> None:
         raise NoAnswer("no reply to a write")
     if reply[0] == RSP_NAK:
         raise ProtocolError("board answered NAK (checksum error on the link)")
-    if reply[0] != RSP_ACK:
-        raise ProtocolError(f"unexpected write reply 0x{reply[0]:02x}")
+    if reply[0] != RSP_ACK or len(reply) != 1:
+        raise ProtocolError(f"unexpected write reply {reply.hex()}")
 
 
-def reg_addr(name_or_addr: str) -> int:
-    key = name_or_addr.upper()
-    if key in REGS:
-        return REGS[key][0]
+# --------------------------------------------------------------------------- names
+def lookup(spec: str) -> tuple[R.Register | None, int, R.Field | None]:
+    """'CTRL', 'ctrl.en', '0x0c' or '12' -> (register or None for an unmapped address, address, field)."""
+    name, _, fname = spec.partition(".")
+    reg = R.BY_NAME.get(name.upper())
+    if reg is None:
+        try:
+            addr = int(name, 0)
+        except ValueError:
+            raise ValueError(f"unknown register {name!r}; known: {', '.join(R.BY_NAME)} or a byte address") from None
+        _check_addr(addr)
+        reg = R.BY_ADDR.get(addr)
+    else:
+        addr = reg.addr
+    if not fname:
+        return reg, addr, None
+    if reg is None:
+        raise ValueError(f"no register at 0x{addr:02x}, so no field {fname!r}")
     try:
-        return int(name_or_addr, 0)
+        return reg, addr, reg.field(fname.lower())
+    except KeyError:
+        raise ValueError(f"{reg.name} has no field {fname!r}; fields: "
+                         f"{', '.join(f.name for f in reg.fields)}") from None
+
+
+def parse_int(text: str) -> int:
+    try:
+        return int(text, 0)
     except ValueError:
-        raise SystemExit(f"error: unknown register {name_or_addr!r}; known: {', '.join(REGS)} "
-                         f"or a number") from None
+        raise ValueError(f"not an integer: {text!r} (e.g. 1536, 0x600, -5)") from None
 
 
-@dataclass
+def parse_num(text: str) -> Fraction:
+    """A decimal number, kept exact (50, 1.5, 2e4, -0.25)."""
+    try:
+        return Fraction(text)
+    except (ValueError, ZeroDivisionError):
+        raise ValueError(f"not a number: {text!r}") from None
+
+
+def round_half_away(x: Fraction) -> int:
+    """Nearest integer, halves away from zero (the same for + and - frequencies)."""
+    n = (abs(x) * 2 + 1) // 2
+    return int(n if x >= 0 else -n)
+
+
+def field_range(f: R.Field) -> tuple[int, int]:
+    return (-(1 << (f.width - 1)), (1 << (f.width - 1)) - 1) if f.signed else (0, (1 << f.width) - 1)
+
+
+def _fmt(x: Fraction | float, digits: int = 6) -> str:
+    return f"{float(x):.{digits}g}"
+
+
+# --------------------------------------------------------------------------- physical units
+@dataclass(frozen=True)
 class Config:
     clk_hz: int
     phase_width: int
@@ -98,86 +153,142 @@ class Config:
 
     @classmethod
     def from_regs(cls, clk_hz: int, config: int) -> "Config":
-        return cls(clk_hz, (config >> 24) & 0xFF, (config >> 16) & 0xFF, (config >> 8) & 0xFF, config & 0xFF)
+        c = R.CONFIG.decode(config)
+        return cls(clk_hz, c["phase_width"], c["freq_width"], c["cnt_width"], c["dt_width"])
 
-    # physical units <-> register words
-    def freq_word(self, hz: float) -> int:
-        w = round(hz * 6 * (1 << self.phase_width) / self.clk_hz)
-        lim = 1 << (self.freq_width - 1)
-        if not -lim <= w < lim:
-            raise ValueError(f"{hz} Hz out of range +-{(lim - 1) * self.clk_hz / (6 * (1 << self.phase_width)):.1f} Hz")
+    @property
+    def freq_lsb(self) -> Fraction:
+        """Hz per frequency-word LSB: f_clk / (6 * 2^PhaseWidth)."""
+        return Fraction(self.clk_hz, 6 << self.phase_width)
+
+    def freq_word(self, hz: Fraction) -> int:
+        w = round_half_away(Fraction(hz) / self.freq_lsb)
+        lim = (1 << (self.freq_width - 1)) - 1          # the core's default FreqMax: +-(2^(W-1) - 1)
+        if abs(w) > lim:
+            raise ValueError(f"{_fmt(hz)} Hz is out of range: |f| <= {_fmt(lim * self.freq_lsb)} Hz "
+                             f"(frequency word +-{lim} at {self.clk_hz} Hz)")
         return w
 
-    def freq_hz(self, word: int) -> float:
-        if word & (1 << 31):
-            word -= 1 << 32
-        return word * self.clk_hz / (6 * (1 << self.phase_width))
+    def freq_hz(self, word: int) -> Fraction:
+        return word * self.freq_lsb
 
-    def period_word(self, fsw_hz: float) -> int:
-        p = round(self.clk_hz / (2 * fsw_hz))
-        if not 1 <= p < (1 << self.cnt_width):
-            raise ValueError(f"f_sw {fsw_hz} Hz needs a half period of {p} clocks, out of range")
-        return p
+    def half_period(self, fsw_hz: Fraction) -> int:
+        if fsw_hz <= 0:
+            raise ValueError(f"switching frequency {_fmt(fsw_hz)} Hz must be > 0")
+        return round_half_away(Fraction(self.clk_hz) / (2 * Fraction(fsw_hz)))
 
-    def dt_word(self, us: float) -> int:
-        d = round(us * self.clk_hz / 1e6)
-        if not 0 <= d < (1 << self.dt_width):
-            raise ValueError(f"dead time {us} us = {d} clocks, out of range 0..{(1 << self.dt_width) - 1}")
-        return d
+    def fsw_hz(self, half_period: int) -> Fraction:
+        return Fraction(self.clk_hz, 2 * half_period)
+
+    def clocks(self, us: Fraction, what: str) -> int:
+        """Dead time / minimum pulse in microseconds -> clocks (DtWidth bits)."""
+        if us < 0:
+            raise ValueError(f"{what} {_fmt(us)} us must be >= 0")
+        n = round_half_away(Fraction(us) * self.clk_hz / 1_000_000)
+        top = (1 << self.dt_width) - 1
+        if n > top:
+            raise ValueError(f"{what} {_fmt(us)} us = {n} clocks is out of range: at most {top} clocks "
+                             f"({_fmt(Fraction(top * 1_000_000, self.clk_hz))} us at {self.clk_hz} Hz)")
+        if us > 0 and n == 0:
+            raise ValueError(f"{what} {_fmt(us)} us is less than half a clock ({self.clk_hz} Hz): it would be 0")
+        return n
+
+    def us(self, clocks: int) -> Fraction:
+        return Fraction(clocks * 1_000_000, self.clk_hz)
 
 
-def m_word(m: float) -> int:
-    if not 0 <= m <= 1.0:
-        raise ValueError(f"modulation index {m} out of range 0..1")
-    return round(m * 0x8000)
+def m_word(m: Fraction | float) -> int:
+    """Modulation index (1.0 = inscribed circle) -> UQ1.15, 0 .. 0xFFFF (1.99997; beyond the hexagon
+    the core clamps the vector to it and flags STATUS.sat)."""
+    w = round_half_away(Fraction(m) * 0x8000)
+    if not 0 <= w <= 0xFFFF:
+        raise ValueError(f"modulation index {_fmt(m)} is out of range 0 .. {_fmt(Fraction(0xFFFF, 0x8000))}")
+    return w
 
 
+# --------------------------------------------------------------------------- the board
 class Board:
-    """Register access over a pyserial-like port (read(n), write(b), reset_input_buffer())."""
+    """Register access over a pyserial-like port (read(n), write(b), optional reset_input_buffer())."""
 
-    def __init__(self, port):
+    def __init__(self, port, clk_hz: int | None = None, name: str = "the board"):
         self.port = port
+        self.clk_hz_override = clk_hz
+        self.name = name
         self._cfg: Config | None = None
 
     def _xfer(self, frame: bytes, n: int) -> bytes:
         if hasattr(self.port, "reset_input_buffer"):
             self.port.reset_input_buffer()
         self.port.write(frame)
-        return self.port.read(n)
+        reply = self.port.read(n)
+        if not reply:
+            raise NoAnswer(f"{self.name} does not answer (timeout; wrong port, board not programmed, "
+                           f"or wrong baud rate?)")
+        return reply
 
     def read(self, addr: int) -> int:
-        reply = self._xfer(encode_read(addr), 5)
-        if not reply:
-            raise NoAnswer("the board does not answer (wrong port, not programmed, or baud rate?)")
-        return decode_read_reply(reply)
+        return decode_read_reply(self._xfer(encode_read(addr), 5))
 
     def write(self, addr: int, value: int) -> None:
-        reply = self._xfer(encode_write(addr, value), 1)
-        if not reply:
-            raise NoAnswer("the board does not answer (wrong port, not programmed, or baud rate?)")
-        decode_write_reply(reply)
+        decode_write_reply(self._xfer(encode_write(addr, value), 1))
+
+    def read_reg(self, reg: R.Register) -> dict[str, int]:
+        return reg.decode(self.read(reg.addr))
+
+    def write_fields(self, reg: R.Register, **values: int) -> int:
+        """Read-modify-write of the named fields (range-checked); other RW fields keep their values,
+        pulse fields not named are written 0. Returns the word written."""
+        for name, v in values.items():
+            f = reg.field(name)
+            if not f.writable:
+                raise ValueError(f"{reg.name}.{name} is read-only")
+            lo, hi = field_range(f)
+            if not lo <= v <= hi:
+                raise ValueError(f"{reg.name}.{name} = {v} is out of range {lo} .. {hi} ({f.width} bits)")
+        keep = reg.mask("rw", "w1s") & ~sum(reg.field(n).mask for n in values)
+        word = (self.read(reg.addr) & keep if keep else 0) | reg.encode(**values)
+        self.write(reg.addr, word)
+        return word
 
     def config(self) -> Config:
         if self._cfg is None:
-            ident = self.read(REGS["ID"][0])
+            ident = self.read(R.ID.addr)
             if ident != ID_VALUE:
                 raise ProtocolError(f"unexpected ID 0x{ident:08x} (expected 0x{ID_VALUE:08x}): not an svpwm board?")
-            self._cfg = Config.from_regs(self.read(REGS["CLK_HZ"][0]), self.read(REGS["CONFIG"][0]))
+            ver = self.read_reg(R.VERSION)
+            if ver["major"] != MAP_MAJOR:
+                raise ProtocolError(f"register map version {ver['major']}.{ver['minor']} is not supported "
+                                    f"(this tool: {MAP_MAJOR}.x)")
+            stated = self.read(R.CLK_HZ.addr)
+            clk = stated or self.clk_hz_override
+            if not clk:
+                raise ValueError("the board does not state its clock (CLK_HZ reads 0): give --clk-hz")
+            if stated and self.clk_hz_override and self.clk_hz_override != stated:
+                raise ValueError(f"--clk-hz {self.clk_hz_override} disagrees with the board's CLK_HZ {stated}")
+            self._cfg = Config.from_regs(clk, self.read(R.CONFIG.addr))
         return self._cfg
 
-    def status(self) -> dict:
+    def status(self) -> dict[str, object]:
         cfg = self.config()
-        r = {name: self.read(a) for name, (a, _) in REGS.items()}
-        st = r["STATUS"]
-        return {
-            "enabled": bool(r["CTRL"] & CTRL_EN), "running": bool(st & 1), "sat": bool(st & 2),
-            "period_clamp": bool(st & 4), "fault": bool(st & 8), "fault_pin": bool(st & 16),
-            "sector": (st >> 8) & 7,
-            "freq_hz": round(cfg.freq_hz(r["FREQ"]), 4), "m": r["M"] / 0x8000,
-            "f_sw_hz": round(cfg.clk_hz / (2 * r["PERIOD"]), 2) if r["PERIOD"] else None,
-            "period_clocks": r["PERIOD"], "dt_us": round(r["DT"] * 1e6 / cfg.clk_hz, 4), "dt_clocks": r["DT"],
+        v = {r.name: self.read(r.addr) for r in R.REGISTERS if r.name not in ("ID", "VERSION", "CONFIG")}
+        st, ctrl = R.STATUS.decode(v["STATUS"]), R.CTRL.decode(v["CTRL"])
+        freq = R.FREQ.decode(v["FREQ"])["freq"]
+        out: dict[str, object] = {k: st[k] for k in ("running", "tripped", "fault", "sat", "cfg_err",
+                                                      "period_clamp", "freq_clamp", "locked", "sector")}
+        out.update({
+            "en": ctrl["en"],
+            "mode": next((k for k, x in MODES.items() if x == ctrl["mode"]), f"invalid ({ctrl['mode']})"),
+            "dpwm": next(k for k, x in DPWM.items() if x == ctrl["dpwm"]),
+            "upd": next((k for k, x in UPD.items() if x == ctrl["upd"]), f"invalid ({ctrl['upd']})"),
+            "freq_hz": _fmt(cfg.freq_hz(freq), 8), "freq_word": freq,
+            "m": _fmt(Fraction(v["M"], 0x8000)), "m_word": v["M"],
+            "fsw_hz": _fmt(cfg.fsw_hz(v["PERIOD"]), 8) if v["PERIOD"] else "-", "period_clocks": v["PERIOD"],
+            "period_act_clocks": v["PERIOD_ACT"],
+            "dt_us": _fmt(cfg.us(v["DT"])), "dt_clocks": v["DT"],
+            "mp_us": _fmt(cfg.us(v["MP"])), "mp_clocks": v["MP"],
             "clk_hz": cfg.clk_hz,
-        }
+        })
+        return out
 
 
 def open_port(name: str | None, baud: int, timeout: float):
@@ -193,78 +304,152 @@ def open_port(name: str | None, baud: int, timeout: float):
         raise SystemExit(f"error: cannot open serial port {name}: {e}") from None
 
 
+# --------------------------------------------------------------------------- command line
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="svpwmctl", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("-p", "--port", default=os.environ.get("SVPWM_PORT"),
                     help="serial port (default $SVPWM_PORT); iCEBreaker/iCEstick: the FTDI's 2nd port")
-    ap.add_argument("-b", "--baud", type=int, default=115200)
-    ap.add_argument("-t", "--timeout", type=float, default=0.5, help="reply timeout in seconds")
+    ap.add_argument("-b", "--baud", type=int, default=115200, help="baud rate (default 115200)")
+    ap.add_argument("-t", "--timeout", type=float, default=0.5, help="reply timeout in seconds (default 0.5)")
+    ap.add_argument("--clk-hz", type=int, default=None,
+                    help="core clock in Hz, for a board whose CLK_HZ reads 0 (must agree if it does not)")
     sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
 
-    def add(name, help_, **kw):
-        return sub.add_parser(name, help=help_, description=help_, **kw)
+    def add(name, help_):
+        return sub.add_parser(name, help=help_, description=help_)
 
-    p = add("read", "read a register by name (ID, CTRL, FREQ, M, PERIOD, DT, STATUS, ...) or address")
-    p.add_argument("reg")
-    p = add("write", "write a raw value to a register by name or address")
-    p.add_argument("reg")
-    p.add_argument("value", help="integer, e.g. 1536 or 0x600")
-    add("dump", "read all registers")
-    add("status", "show the state in physical units")
-    add("start", "enable modulation (CTRL.en = 1)")
+    regs = ", ".join(R.BY_NAME)
+    p = add("read", f"read a register or one field by name ({regs}; e.g. CTRL, status.sector) or byte address")
+    p.add_argument("reg", help="REG, REG.FIELD or a byte address (0x0c)")
+    p = add("write", "write a register (raw 32-bit value) or one field (read-modify-write, range-checked)")
+    p.add_argument("reg", help="REG, REG.FIELD or a byte address")
+    p.add_argument("value", help="integer, e.g. 1536, 0x600, -5 (signed fields)")
+    add("dump", "read every register of the map, with its fields")
+    add("info", "ID, register map version, core widths (CONFIG) and clock (CLK_HZ)")
+    add("status", "the state in physical units and the decoded STATUS fields")
+    p = add("start", "enable modulation (CTRL.en = 1; the other CTRL fields are kept)")
+    p.add_argument("--allow-zero-dt", action="store_true",
+                   help="start even though DT is 0 (no dead time: only without a power stage)")
     add("stop", "disable modulation: all gates off (CTRL.en = 0)")
-    add("clear-fault", "clear the latched fault (modulation stays stopped until `start`)")
-    p = add("set-freq", "set the output frequency in Hz (negative = reverse rotation)")
-    p.add_argument("hz", type=float)
-    p = add("set-m", "set the modulation index 0..1")
-    p.add_argument("m", type=float)
-    p = add("set-period", "set the carrier: switching frequency in Hz or half period in clocks")
+    add("clear-fault", "clear a latched trip (CTRL.fault_clear); fails while the fault input is active")
+    p = add("set-freq", "output frequency in Hz (negative = reverse rotation), modes freq and vf")
+    p.add_argument("hz", help="e.g. 50, -12.5")
+    p = add("set-m", "modulation index, 1.0 = inscribed circle, up to 1.99997 (the core clamps to the hexagon)")
+    p.add_argument("m", help="e.g. 0.9")
+    p = add("set-period", "carrier: switching frequency in Hz or half period in clocks")
     g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--fsw", type=float, help="switching (carrier) frequency in Hz")
-    g.add_argument("--clocks", type=int, help="half carrier period in core clocks")
-    p = add("set-dt", "set the dead time in microseconds")
-    p.add_argument("us", type=float)
+    g.add_argument("--fsw", help="switching (carrier) frequency in Hz: PERIOD = f_clk / (2 f_sw), rounded")
+    g.add_argument("--clocks", help="half carrier period in core clocks")
+    p = add("set-dt", "dead time in microseconds (rounded to clocks)")
+    p.add_argument("us")
+    p = add("set-mp", "minimum gate pulse in microseconds (rounded to clocks)")
+    p.add_argument("us")
+    p = add("set-mode", "input mode (CTRL.mode) and optionally the modulation (CTRL.dpwm) and load point (CTRL.upd)")
+    p.add_argument("mode", choices=list(MODES))
+    p.add_argument("--dpwm", choices=list(DPWM), help="zero-vector placement (default: unchanged)")
+    p.add_argument("--upd", choices=list(UPD), help="compare load point (default: unchanged)")
     return ap
+
+
+def _locked_check(board: Board, what: str) -> None:
+    if board.read_reg(R.STATUS)["locked"]:
+        raise ValueError(f"{what} is locked (STATUS.locked, CTRL.lock) until the board is reset")
+
+
+def _period_check(board: Board, cfg: Config, p: int) -> None:
+    top = (1 << cfg.cnt_width) - 1
+    dt, mp = board.read(R.DT.addr), board.read(R.MP.addr)
+    low = max(MIN_PERIOD, 2 * (dt + mp))
+    if not low <= p <= top:
+        raise ValueError(f"half period {p} clocks is out of range {low} .. {top} (MinPeriod {MIN_PERIOD}, "
+                         f"2 (DT + MP) = {2 * (dt + mp)}; f_sw {_fmt(cfg.fsw_hz(top))} .. "
+                         f"{_fmt(cfg.fsw_hz(low))} Hz)")
 
 
 def run(args, board: Board) -> str:
     c = args.cmd
     if c == "read":
-        return f"0x{board.read(reg_addr(args.reg)):08x}"
+        reg, addr, f = lookup(args.reg)
+        v = board.read(addr)
+        if f is not None:
+            return str(reg.decode(v)[f.name])
+        return f"0x{v:08x}" + ("  " + ", ".join(f"{k}={x}" for k, x in reg.decode(v).items()) if reg else "")
     if c == "write":
-        board.write(reg_addr(args.reg), int(args.value, 0))
+        reg, addr, f = lookup(args.reg)
+        v = parse_int(args.value)
+        if f is not None:
+            board.write_fields(reg, **{f.name: v})
+        else:
+            if not -(1 << 31) <= v <= 0xFFFF_FFFF:
+                raise ValueError(f"{v} does not fit 32 bits")
+            board.write(addr, v)
         return "ok"
     if c == "dump":
-        return "\n".join(f"{n:8} 0x{a:02x}  0x{board.read(a):08x}" for n, (a, _) in REGS.items())
+        lines = []
+        for r in R.REGISTERS:
+            v = board.read(r.addr)
+            fields = ", ".join(f"{k}={x}" for k, x in r.decode(v).items())
+            lines.append(f"0x{r.addr:02x} {r.name:10} 0x{v:08x}  {fields}")
+        return "\n".join(lines)
+    if c == "info":
+        cfg = board.config()
+        ver = board.read_reg(R.VERSION)
+        return (f"ID 0x{ID_VALUE:08x} (svpwm), register map {ver['major']}.{ver['minor']}, "
+                f"clock {cfg.clk_hz} Hz{' (--clk-hz)' if not board.read(R.CLK_HZ.addr) else ''}, "
+                f"PhaseWidth {cfg.phase_width}, FreqWidth {cfg.freq_width}, CntWidth {cfg.cnt_width}, "
+                f"DtWidth {cfg.dt_width}")
     if c == "status":
-        return "\n".join(f"{k:14} {v}" for k, v in board.status().items())
+        return "\n".join(f"{k:18} {v}" for k, v in board.status().items())
     if c == "start":
-        board.write(REGS["CTRL"][0], CTRL_EN)
+        if board.read(R.DT.addr) == 0 and not args.allow_zero_dt:
+            raise ValueError("DT is 0 (no dead time between the gates of a leg): set-dt first "
+                             "(or --allow-zero-dt without a power stage)")
+        board.write_fields(R.CTRL, en=1)
         return "started"
     if c == "stop":
-        board.write(REGS["CTRL"][0], 0)
+        board.write_fields(R.CTRL, en=0)
         return "stopped"
     if c == "clear-fault":
-        board.write(REGS["CTRL"][0], CTRL_FAULT_CLR)
-        return "fault cleared" if not board.read(REGS["STATUS"][0]) & 8 else "fault still present (fault pin active)"
+        board.write_fields(R.CTRL, fault_clear=1)
+        st = board.read_reg(R.STATUS)
+        if st["tripped"]:
+            raise ProtocolError("still tripped: the fault input is active" if st["fault"]
+                                else "still tripped after CTRL.fault_clear")
+        return "fault cleared"
+    if c == "set-mode":
+        vals = {"mode": MODES[args.mode]}
+        if args.dpwm:
+            vals["dpwm"] = DPWM[args.dpwm]
+        if args.upd:
+            vals["upd"] = UPD[args.upd]
+        board.write_fields(R.CTRL, **vals)
+        return ", ".join(f"CTRL.{k} = {v}" for k, v in vals.items())
+    if c == "set-m":
+        w = m_word(parse_num(args.m))
+        board.write_fields(R.M, m=w)
+        return f"M = 0x{w:04x} (m = {_fmt(Fraction(w, 0x8000))})"
     cfg = board.config()
     if c == "set-freq":
-        w = cfg.freq_word(args.hz)
-        board.write(REGS["FREQ"][0], w)
-        return f"FREQ = {w} ({cfg.freq_hz(w & 0xFFFF_FFFF):.4f} Hz)"
-    if c == "set-m":
-        w = m_word(args.m)
-        board.write(REGS["M"][0], w)
-        return f"M = 0x{w:04x}"
+        w = cfg.freq_word(parse_num(args.hz))
+        board.write_fields(R.FREQ, freq=w)
+        return f"FREQ = {w} ({_fmt(cfg.freq_hz(w), 8)} Hz)"
     if c == "set-period":
-        w = args.clocks if args.clocks is not None else cfg.period_word(args.fsw)
-        board.write(REGS["PERIOD"][0], w)
-        return f"PERIOD = {w} clocks (f_sw {cfg.clk_hz / (2 * w):.2f} Hz)"
-    if c == "set-dt":
-        w = cfg.dt_word(args.us)
-        board.write(REGS["DT"][0], w)
-        return f"DT = {w} clocks ({w * 1e6 / cfg.clk_hz:.4f} us)"
+        p = parse_int(args.clocks) if args.clocks is not None else cfg.half_period(parse_num(args.fsw))
+        _period_check(board, cfg, p)
+        board.write_fields(R.PERIOD, period=p)
+        return f"PERIOD = {p} clocks (f_sw {_fmt(cfg.fsw_hz(p), 8)} Hz)"
+    if c in ("set-dt", "set-mp"):
+        reg, what = (R.DT, "dead time") if c == "set-dt" else (R.MP, "minimum pulse")
+        n = cfg.clocks(parse_num(args.us), what)
+        _locked_check(board, what)
+        period = board.read(R.PERIOD.addr)
+        other = board.read((R.MP if reg is R.DT else R.DT).addr)
+        if period < 2 * (n + other):
+            raise ValueError(f"{what} {n} clocks needs PERIOD >= 2 (DT + MP) = {2 * (n + other)}, "
+                             f"PERIOD is {period}: lengthen the period first")
+        board.write_fields(reg, **{reg.fields[0].name: n})
+        return f"{reg.name} = {n} clocks ({_fmt(cfg.us(n))} us)"
     raise SystemExit(f"error: unknown command {c}")
 
 
@@ -272,9 +457,9 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     port = open_port(args.port, args.baud, args.timeout)
     try:
-        print(run(args, Board(port)))
+        print(run(args, Board(port, args.clk_hz, name=f"the board on {args.port}")))
     except NoAnswer as e:
-        print(f"error: {args.port}: {e}", file=sys.stderr)
+        print(f"error: {e}", file=sys.stderr)
         return 3
     except (ProtocolError, ValueError) as e:
         print(f"error: {e}", file=sys.stderr)

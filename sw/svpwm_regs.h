@@ -21,7 +21,7 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x0
+#define SVPWM__VERSION__MINOR_reset 0x1
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16
@@ -235,6 +235,12 @@ extern "C" {
 #define SVPWM__CMP_C__CMP_bw 16
 #define SVPWM__CMP_C__CMP_reset 0x0
 
+// reg - svpwm::CLK_HZ
+#define SVPWM__CLK_HZ__CLK_HZ_bm 0xffffffff
+#define SVPWM__CLK_HZ__CLK_HZ_bp 0
+#define SVPWM__CLK_HZ__CLK_HZ_bw 32
+#define SVPWM__CLK_HZ__CLK_HZ_reset 0x0
+
 // addrmap - svpwm
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -259,10 +265,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t CMP_A;
     uint32_t CMP_B;
     uint32_t CMP_C;
+    uint32_t CLK_HZ;
 } svpwm_t;
 
 
-static_assert(sizeof(svpwm_t) == 0x58, "Packing error");
+static_assert(sizeof(svpwm_t) == 0x5c, "Packing error");
 
 #ifdef __cplusplus
 }

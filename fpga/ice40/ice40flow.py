@@ -59,7 +59,7 @@ def run_synth(out: Path, top: str, device: str, sources: list[Path],
     _, ydev, dsp, _ = DEVICES[device]
     srcs = " ".join(str(Path(s).resolve()) for s in sources)
     script = (f"read_verilog -sv -defer {srcs}; "
-              + "".join(f"chparam -set {k} {v} {top}; " for k, v in (params or {}).items())
+              + (f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top}; " if params else "")
               + f"hierarchy -top {top}; synth_ice40 -device {ydev} -top {top}"
               + f"{' -dsp' if dsp else ''}{'' if flatten else ' -noflatten'} -json {out / (top + '.json')}; "
               + f"tee -q -o {out / 'stat.json'} stat -json")

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 DATA_WIDTH = 32
-SIZE = 0x58  # bytes; higher addresses read 0
+SIZE = 0x5C  # bytes; higher addresses read 0
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,7 @@ REGISTERS: tuple[Register, ...] = (
         Field("id", 0, 32, "const", 0x53565057),
     )),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x0),
+        Field("minor", 0, 16, "const", 0x1),
         Field("major", 16, 16, "const", 0x2),
     )),
     Register("CONFIG", 0x08, (
@@ -165,6 +165,9 @@ REGISTERS: tuple[Register, ...] = (
     Register("CMP_C", 0x54, (
         Field("cmp", 0, 16, "status", 0x0, port="cmp_c_i"),
     )),
+    Register("CLK_HZ", 0x58, (
+        Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz"),
+    )),
 )
 
 BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}
@@ -192,3 +195,4 @@ PERIOD_ACT = BY_NAME["PERIOD_ACT"]
 CMP_A = BY_NAME["CMP_A"]
 CMP_B = BY_NAME["CMP_B"]
 CMP_C = BY_NAME["CMP_C"]
+CLK_HZ = BY_NAME["CLK_HZ"]

@@ -26,6 +26,10 @@ def test_regmap_consistent():
     assert R.ID.reset == 0x53565057 and R.PERIOD.reset == 1536 and R.DT.reset == 0
     assert R.FREQ.field("freq").signed and R.FREQ.decode(0xFFFFFF)["freq"] == -1
     assert R.CTRL.encode(mode=7, en=1) == 0x701
+    # CLK_HZ: appended at the next free offset (nothing moved), its value is the wrappers' ClkHz parameter
+    assert (R.CMP_C.addr, R.CLK_HZ.addr, R.VERSION.reset) == (0x54, 0x58, 0x0002_0001)
+    f = R.CLK_HZ.field("clk_hz")
+    assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
 
 
 def _c_checks() -> str:

@@ -1,32 +1,47 @@
 // SPDX-License-Identifier: Apache-2.0
-// uart_reg_bridge: framed register protocol over a UART byte stream -> 8-bit address, 32-bit data bus.
+// uart_reg_bridge: framed register protocol over a UART byte stream -> a register port (req / we /
+// byte address / wdata / be, read data the clock after the request: svpwm_mmio, svpwm_regs).
 // Frames (all bytes 8N1; chk makes the byte sum of the whole frame 0 mod 256, chk = -sum(preceding)):
 //   write:  0x57 'W', addr, d0, d1, d2, d3 (LSB first), chk  ->  reply 0x4B 'K' after the write
 //   read:   0x52 'R', addr, chk                              ->  reply d0, d1, d2, d3, chk (reply sum 0)
 //   a complete frame with a bad checksum                     ->  reply 0x4E 'N', no register access
-// Any other byte where a frame must start is ignored (the parser re-synchronises on 'W' / 'R'), a UART
-// framing error aborts the frame, and a frame whose next byte does not arrive within TimeoutBits bit
-// times of the previous one is dropped. Only a complete frame with a good checksum writes, so a
-// malformed or truncated frame never changes a register. Bytes received while a reply is being sent
-// are ignored: the host waits for the reply before the next frame.
+// addr is the register's byte address (svpwm_regs ignores addr[1:0]). Any other byte where a frame
+// must start is ignored (the parser re-synchronises on 'W' / 'R'), a UART framing error aborts the
+// frame, and a frame whose next byte does not arrive within TimeoutBits bit times of the previous one
+// is dropped. Only a complete frame with a good checksum accesses the register port (one write or one
+// read, be_o = 4'hF), so a malformed or truncated frame never changes a register. Bytes received while
+// a reply is being sent are ignored: the host waits for the reply before the next frame.
+// Parameters:
+//   ClksPerBit  - clocks per UART bit (>= 4; 48 MHz / 115200 = 417)
+//   TimeoutBits - inter-byte timeout in bit times (1000 = 8.7 ms at 115200 baud)
+// Latency: write: req_o the clock after the checksum byte, the 'K' reply starts with it. Read: req_o
+//   the clock after the checksum byte, rdata_i sampled two clocks later, then the reply.
+// Restrictions: the register port must accept a request in every clock (no wait states) and hold
+//   rdata_i from the clock after a read request until the next request (svpwm_regs does).
 `default_nettype none
 
 module uart_reg_bridge #(
   parameter int ClksPerBit  = 417,     // 48 MHz / 115200
   parameter int TimeoutBits = 1000     // inter-byte timeout in bit times (8.7 ms at 115200 baud)
 ) (
-  input  wire         clk_i,
-  input  wire         rst_ni,
-  input  wire         rx_i,            // UART from the host
+  input  logic        clk_i,           // clock
+  input  logic        rst_ni,          // asynchronous reset, active low
+  input  logic        rx_i,            // UART from the host
   output logic        tx_o,            // UART to the host
-  output logic        wr_o,            // one-clock register write strobe
-  output logic [7:0]  addr_o,          // register address (valid with wr_o and for rdata_i)
-  output logic [31:0] wdata_o,
-  input  wire  [31:0] rdata_i          // read data of addr_o, combinational
+  output logic        req_o,           // one-clock register access request
+  output logic        we_o,            // with req_o: 1 write, 0 read
+  output logic [7:0]  addr_o,          // register byte address (the frame's address byte)
+  output logic [31:0] wdata_o,         // write data, valid with a write req_o
+  output logic [3:0]  be_o,            // byte enables: always all four
+  input  logic [31:0] rdata_i          // read data, valid the clock after a read req_o
 );
   localparam logic [7:0] CmdWrite = 8'h57, CmdRead = 8'h52, RspAck = 8'h4B, RspNak = 8'h4E;
   localparam int TimeoutClks = ClksPerBit * TimeoutBits;
   localparam int TW = $clog2(TimeoutClks + 1);
+
+  if (TimeoutBits < 12) begin : gen_bad_timeout
+    initial $fatal(1, "uart_reg_bridge: TimeoutBits must be >= 12 (longer than a byte), got %0d", TimeoutBits);
+  end
 
   logic [7:0] rx_data;
   logic       rx_valid, rx_ferr;
@@ -40,108 +55,151 @@ module uart_reg_bridge #(
     .frame_err_o (rx_ferr)
   );
 
-  logic [7:0] tx_data;
-  logic       tx_valid, tx_ready;
+  logic [7:0] tx_data_d, tx_data_q;
+  logic       tx_valid_d, tx_valid_q, tx_ready;
 
   uart_tx #(.ClksPerBit(ClksPerBit)) u_tx (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .data_i  (tx_data),
-    .valid_i (tx_valid),
+    .data_i  (tx_data_q),
+    .valid_i (tx_valid_q),
     .ready_o (tx_ready),
     .tx_o    (tx_o)
   );
 
-  typedef enum logic [2:0] {SIdle, SAddr, SData, SChk, SReply} state_e;
-  state_e      st_q;
-  logic        is_wr_q;
-  logic [1:0]  n_q;                 // data byte index / reply byte index
-  logic [7:0]  sum_q;               // running byte sum of the frame
-  logic [31:0] data_q;              // write data, later the read reply
-  logic [2:0]  left_q;              // reply bytes still to send
-  logic [TW-1:0] to_q;              // inter-byte timeout counter
+  // SAddr / SData / SChk receive a frame; SRead waits for the read data; SReply sends the reply
+  typedef enum logic [2:0] {SIdle, SAddr, SData, SChk, SRead, SReply} state_e;
+  state_e        st_d, st_q;
+  logic          is_wr_d, is_wr_q;    // the frame is a write
+  logic [1:0]    n_d, n_q;            // data byte index
+  logic [7:0]    sum_d, sum_q;        // running byte sum of the frame / of the reply
+  logic [31:0]   data_d, data_q;      // write data, later the read reply
+  logic [2:0]    left_d, left_q;      // reply bytes still to send
+  logic [TW-1:0] to_d, to_q;          // clocks since the last byte of the frame
+  logic [7:0]    addr_d, addr_q;
+  logic          req_d, req_q, we_d, we_q;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      st_q     <= SIdle;
-      is_wr_q  <= 1'b0;
-      n_q      <= '0;
-      sum_q    <= '0;
-      data_q   <= '0;
-      left_q   <= '0;
-      to_q     <= '0;
-      addr_o   <= '0;
-      wr_o     <= 1'b0;
-      tx_valid <= 1'b0;
-      tx_data  <= '0;
-    end else begin
-      wr_o     <= 1'b0;
-      tx_valid <= 1'b0;
-      if (st_q != SIdle && st_q != SReply) to_q <= to_q + 1'b1;
-      if (rx_valid) to_q <= '0;
+  logic       in_frame;               // between a command byte and the checksum byte
+  logic [7:0] chk_sum;                // frame sum including the received checksum byte
+  assign in_frame = (st_q == SAddr) || (st_q == SData) || (st_q == SChk);
+  assign chk_sum  = sum_q + rx_data;
 
-      unique case (st_q)
-        SIdle: if (rx_valid && (rx_data == CmdWrite || rx_data == CmdRead)) begin
-          st_q    <= SAddr;
-          is_wr_q <= (rx_data == CmdWrite);
-          sum_q   <= rx_data;
+  always_comb begin
+    st_d       = st_q;
+    is_wr_d    = is_wr_q;
+    n_d        = n_q;
+    sum_d      = sum_q;
+    data_d     = data_q;
+    left_d     = left_q;
+    to_d       = (in_frame && !rx_valid) ? to_q + 1'b1 : '0;
+    addr_d     = addr_q;
+    req_d      = 1'b0;
+    we_d       = 1'b0;
+    tx_valid_d = 1'b0;
+    tx_data_d  = tx_data_q;
+
+    unique case (st_q)
+      SIdle: if (rx_valid && (rx_data == CmdWrite || rx_data == CmdRead)) begin
+        st_d    = SAddr;
+        is_wr_d = (rx_data == CmdWrite);
+        sum_d   = rx_data;
+      end
+      SAddr: if (rx_valid) begin
+        addr_d = rx_data;
+        sum_d  = chk_sum;
+        n_d    = '0;
+        if (is_wr_q) st_d = SData;               // (not ?: -- Icarus 11 wants an enum cast there)
+        else         st_d = SChk;
+      end
+      SData: if (rx_valid) begin
+        data_d = {rx_data, data_q[31:8]};        // LSB first
+        sum_d  = chk_sum;
+        n_d    = n_q + 1'b1;
+        if (n_q == 2'd3) st_d = SChk;
+      end
+      SChk: if (rx_valid) begin
+        if (chk_sum != 8'd0) begin               // bad checksum: answer NAK, touch nothing
+          st_d       = SReply;
+          tx_data_d  = RspNak;
+          tx_valid_d = 1'b1;
+          left_d     = 3'd0;
+        end else if (is_wr_q) begin              // write, then ACK
+          st_d       = SReply;
+          req_d      = 1'b1;
+          we_d       = 1'b1;
+          tx_data_d  = RspAck;
+          tx_valid_d = 1'b1;
+          left_d     = 3'd0;
+        end else begin                           // read: request, wait for the data
+          st_d  = SRead;
+          req_d = 1'b1;
         end
-        SAddr: if (rx_valid) begin
-          addr_o <= rx_data;
-          sum_q  <= sum_q + rx_data;
-          n_q    <= '0;
-          st_q   <= is_wr_q ? SData : SChk;
-        end
-        SData: if (rx_valid) begin
-          data_q <= {rx_data, data_q[31:8]};      // LSB first
-          sum_q  <= sum_q + rx_data;
-          n_q    <= n_q + 1'b1;
-          if (n_q == 2'd3) st_q <= SChk;
-        end
-        SChk: if (rx_valid) begin
-          st_q <= SReply;
-          if (sum_q + rx_data != 8'd0) begin
-            tx_data  <= RspNak;                  // bad checksum: answer NAK, touch nothing
-            tx_valid <= 1'b1;
-            left_q   <= 3'd0;
-          end else if (is_wr_q) begin
-            wr_o     <= 1'b1;
-            tx_data  <= RspAck;
-            tx_valid <= 1'b1;
-            left_q   <= 3'd0;
-          end else begin
-            data_q   <= rdata_i;                 // sample the read data, send 4 bytes + chk
-            left_q   <= 3'd5;
-            sum_q    <= '0;
-          end
-        end
-        default: begin                           // SReply
-          if (!tx_valid && tx_ready) begin
-            if (left_q == 3'd0) st_q <= SIdle;
+      end
+      SRead: if (!req_q) begin                   // the clock after the request: rdata_i valid
+        data_d = rdata_i;
+        left_d = 3'd5;                           // 4 data bytes + chk
+        sum_d  = '0;
+        st_d   = SReply;
+      end
+      default: begin                             // SReply
+        if (!tx_valid_q && tx_ready) begin
+          if (left_q == 3'd0) st_d = SIdle;
+          else begin
+            tx_valid_d = 1'b1;
+            left_d     = left_q - 1'b1;
+            if (left_q == 3'd1) tx_data_d = 8'd0 - sum_q;
             else begin
-              tx_valid <= 1'b1;
-              left_q   <= left_q - 1'b1;
-              if (left_q == 3'd1) tx_data <= 8'd0 - sum_q;
-              else begin
-                tx_data <= data_q[7:0];
-                sum_q   <= sum_q + data_q[7:0];
-                data_q  <= {8'd0, data_q[31:8]};
-              end
+              tx_data_d = data_q[7:0];
+              sum_d     = sum_q + data_q[7:0];
+              data_d    = {8'd0, data_q[31:8]};
             end
           end
         end
-      endcase
-
-      // truncated frame (timeout) or a UART framing error mid-frame: drop the frame
-      if (st_q != SIdle && st_q != SReply && !rx_valid &&
-          (rx_ferr || to_q == TW'(TimeoutClks))) begin
-        st_q <= SIdle;
-        to_q <= '0;
       end
+    endcase
+
+    // truncated frame (timeout) or a UART framing error mid-frame: drop the frame
+    if (in_frame && !rx_valid && (rx_ferr || to_q == TW'(TimeoutClks))) begin
+      st_d = SIdle;
+      to_d = '0;
     end
   end
 
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      st_q       <= SIdle;
+      is_wr_q    <= 1'b0;
+      n_q        <= '0;
+      sum_q      <= '0;
+      data_q     <= '0;
+      left_q     <= '0;
+      to_q       <= '0;
+      addr_q     <= '0;
+      req_q      <= 1'b0;
+      we_q       <= 1'b0;
+      tx_valid_q <= 1'b0;
+      tx_data_q  <= '0;
+    end else begin
+      st_q       <= st_d;
+      is_wr_q    <= is_wr_d;
+      n_q        <= n_d;
+      sum_q      <= sum_d;
+      data_q     <= data_d;
+      left_q     <= left_d;
+      to_q       <= to_d;
+      addr_q     <= addr_d;
+      req_q      <= req_d;
+      we_q       <= we_d;
+      tx_valid_q <= tx_valid_d;
+      tx_data_q  <= tx_data_d;
+    end
+  end
+
+  assign req_o   = req_q;
+  assign we_o    = we_q;
+  assign addr_o  = addr_q;
   assign wdata_o = data_q;
+  assign be_o    = 4'hF;
 endmodule
 
 `default_nettype wire

@@ -1,39 +1,58 @@
 // SPDX-License-Identifier: Apache-2.0
-// icebreaker_top: svpwm on the iCEBreaker (iCE40UP5K-SG48). 12 MHz oscillator -> SB_PLL40_PAD ->
-// 48.000 MHz core clock (yowasp-icepll -i 12 -o 48: DIVR 0, DIVF 63, DIVQ 4, FILTER_RANGE 1,
-// VCO 768 MHz, exact), reset synchroniser (PLL lock and the user button BTN_N, async assert /
-// sync release), and svpwm_ice40_sys: UART register bridge at 115200 baud on the FTDI channel B
-// pins, six gates and an active-low fault input on PMOD 1A, run / fault on the green / red LEDs.
-// Pins: icebreaker.pcf.
+// icebreaker_top: svpwm on the iCEBreaker (iCE40UP5K-SG48). 12 MHz oscillator -> SB_PLL40_PAD -> core
+// clock (default 48.000 MHz), reset synchroniser (PLL lock and the user button BTN_N, async assert /
+// sync release), and svpwm_ice40_sys: UART register bridge at 115200 baud on the FTDI channel B pins
+// in front of the generated register map (docs/registers.md), six gates and an active-low fault input
+// on PMOD 1A, run / fault (tripped) on the green / red LEDs. Pins: icebreaker.pcf.
+// Parameters:
+//   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
+//                 one place to change it (nextpnr derives the clock constraint from the PLL settings
+//                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
+//   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol)
+// Restrictions: ClkHz must be what the PLL settings give (checked at elaboration).
 `default_nettype none
 
 module icebreaker_top #(
-  parameter int CntWidth   = 16,
-  parameter int PhaseWidth = 34,
-  parameter int FreqWidth  = 24,
-  parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 48
+  // ---- board clock: change these five together ------------------------------------------------
+  // `yowasp-icepll -i 12 -o <MHz>` prints DIVR, DIVF, DIVQ and FILTER_RANGE for a new frequency; ClkHz
+  // must be the frequency they give (SIMPLE feedback): 12 MHz * (PllDivf + 1) / ((PllDivr + 1) * 2^PllDivq).
+  // 48 MHz: DIVR 0, DIVF 63, DIVQ 4, FILTER_RANGE 1 (VCO 768 MHz, exact).
+  parameter int         ClkHz          = 48_000_000,
+  parameter int         PllDivr        = 0,
+  parameter int         PllDivf        = 63,
+  parameter int         PllDivq        = 4,
+  parameter int         PllFilterRange = 1,
+  // ---- core ------------------------------------------------------------------------------------
+  parameter int         MinPeriod      = 48,
+  parameter int         FreqMax        = (1 << 23) - 1,
+  parameter logic [1:0] GatePol        = 2'b00
 ) (
   input  wire  CLK,                   // 12 MHz
   input  wire  BTN_N,                 // user button, active low: reset
   input  wire  RX,                    // UART from the PC (FTDI)
   output logic TX,                    // UART to the PC (FTDI)
-  output logic LEDR_N,                // red LED, active low: fault latched
+  output logic LEDR_N,                // red LED, active low: tripped (fault pin low or latched trip)
   output logic LEDG_N,                // green LED, active low: running
   output logic P1A1, P1A2, P1A3, P1A4,  // gates: A hi, A lo, B hi, B lo
   output logic P1A7, P1A8,              // gates: C hi, C lo
   input  wire  P1A9                     // fault input, active low (pull-up)
 );
-  localparam int ClkHz = 48_000_000;
+  localparam int RefHz = 12_000_000;
+  localparam int PllHz = RefHz * (PllDivf + 1) / ((PllDivr + 1) * (1 << PllDivq));   // < 2^31
+
+  if (ClkHz != PllHz) begin : gen_bad_clk_hz
+    initial $fatal(1, "icebreaker_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d)",
+                   ClkHz, PllHz, PllDivr, PllDivf, PllDivq);
+  end
 
   logic clk, pll_lock;
 
   SB_PLL40_PAD #(
     .FEEDBACK_PATH ("SIMPLE"),
-    .DIVR          (4'b0000),
-    .DIVF          (7'b0111111),
-    .DIVQ          (3'b100),
-    .FILTER_RANGE  (3'b001)
+    .DIVR          (4'(PllDivr)),
+    .DIVF          (7'(PllDivf)),
+    .DIVQ          (3'(PllDivq)),
+    .FILTER_RANGE  (3'(PllFilterRange))
   ) u_pll (
     .PACKAGEPIN   (CLK),
     .PLLOUTCORE   (),
@@ -54,13 +73,10 @@ module icebreaker_top #(
   logic       led_run, led_fault;
 
   svpwm_ice40_sys #(
-    .CntWidth   (CntWidth),
-    .PhaseWidth (PhaseWidth),
-    .FreqWidth  (FreqWidth),
-    .DtWidth    (DtWidth),
-    .MinPeriod  (MinPeriod),
-    .ClkHz      (ClkHz),
-    .ClksPerBit (ClkHz / 115_200)
+    .ClkHz     (ClkHz),
+    .MinPeriod (MinPeriod),
+    .FreqMax   (FreqMax),
+    .GatePol   (GatePol)
   ) u_sys (
     .clk_i       (clk),
     .rst_ni      (rst_n),

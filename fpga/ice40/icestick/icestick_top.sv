@@ -1,40 +1,59 @@
 // SPDX-License-Identifier: Apache-2.0
-// icestick_top: svpwm on the Lattice iCEstick (iCE40HX1K-TQ144). 12 MHz oscillator -> SB_PLL40_CORE
-// -> 48.000 MHz core clock (yowasp-icepll -i 12 -o 48: DIVR 0, DIVF 63, DIVQ 4, FILTER_RANGE 1,
-// exact), reset synchroniser on the PLL lock (the board has no button), svpwm_ice40_sys with the
-// UART at 115200 baud on the FTDI channel B pins, six gates and an active-low fault input on the
-// PMOD J2, run on the green LED D5, fault on the red LED D1.
-// The full core does not fit the HX1K's 1280 logic cells (see fpga/ice40/README.md): the default
-// parameters here are the reduced variant that fits (see icestick/Makefile).
+// icestick_top: svpwm on the Lattice iCEstick (iCE40HX1K-TQ144). 12 MHz oscillator -> SB_PLL40_CORE ->
+// core clock (default 48.000 MHz), reset synchroniser on the PLL lock (the board has no button),
+// svpwm_ice40_sys with the UART at 115200 baud on the FTDI channel B pins in front of the generated
+// register map (docs/registers.md), six gates and an active-low fault input on the PMOD J2, run on
+// the green LED D5, fault (tripped) on the red LED D1. Pins: icestick.pcf.
+// Parameters:
+//   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
+//                 one place to change it (nextpnr derives the clock constraint from the PLL settings
+//                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
+//   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol)
+// Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The core with the
+// register map's widths does not fit the HX1K's 1280 logic cells (fpga/ice40/README.md).
 `default_nettype none
 
 module icestick_top #(
-  parameter int CntWidth   = 16,
-  parameter int PhaseWidth = 34,
-  parameter int FreqWidth  = 24,
-  parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 48
+  // ---- board clock: change these five together ------------------------------------------------
+  // `yowasp-icepll -i 12 -o <MHz>` prints DIVR, DIVF, DIVQ and FILTER_RANGE for a new frequency; ClkHz
+  // must be the frequency they give (SIMPLE feedback): 12 MHz * (PllDivf + 1) / ((PllDivr + 1) * 2^PllDivq).
+  // 48 MHz: DIVR 0, DIVF 63, DIVQ 4, FILTER_RANGE 1 (VCO 768 MHz, exact).
+  parameter int         ClkHz          = 48_000_000,
+  parameter int         PllDivr        = 0,
+  parameter int         PllDivf        = 63,
+  parameter int         PllDivq        = 4,
+  parameter int         PllFilterRange = 1,
+  // ---- core ------------------------------------------------------------------------------------
+  parameter int         MinPeriod      = 48,
+  parameter int         FreqMax        = (1 << 23) - 1,
+  parameter logic [1:0] GatePol        = 2'b00
 ) (
   input  wire  CLK,                   // 12 MHz
   input  wire  RX,                    // UART from the PC (FTDI)
   output logic TX,                    // UART to the PC (FTDI)
-  output logic LED1,                  // D1 red: fault latched
+  output logic LED1,                  // D1 red: tripped (fault pin low or latched trip)
   output logic LED2, LED3, LED4,      // D2..D4 red: off
   output logic LED5,                  // D5 green: running
   output logic PMOD1, PMOD2, PMOD3, PMOD4,   // gates: A hi, A lo, B hi, B lo
   output logic PMOD7, PMOD8,                 // gates: C hi, C lo
   input  wire  PMOD9                         // fault input, active low (pull-up)
 );
-  localparam int ClkHz = 48_000_000;
+  localparam int RefHz = 12_000_000;
+  localparam int PllHz = RefHz * (PllDivf + 1) / ((PllDivr + 1) * (1 << PllDivq));   // < 2^31
+
+  if (ClkHz != PllHz) begin : gen_bad_clk_hz
+    initial $fatal(1, "icestick_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d)",
+                   ClkHz, PllHz, PllDivr, PllDivf, PllDivq);
+  end
 
   logic clk, pll_lock;
 
   SB_PLL40_CORE #(
     .FEEDBACK_PATH ("SIMPLE"),
-    .DIVR          (4'b0000),
-    .DIVF          (7'b0111111),
-    .DIVQ          (3'b100),
-    .FILTER_RANGE  (3'b001)
+    .DIVR          (4'(PllDivr)),
+    .DIVF          (7'(PllDivf)),
+    .DIVQ          (3'(PllDivq)),
+    .FILTER_RANGE  (3'(PllFilterRange))
   ) u_pll (
     .REFERENCECLK (CLK),
     .PLLOUTCORE   (),
@@ -55,13 +74,10 @@ module icestick_top #(
   logic       led_run, led_fault;
 
   svpwm_ice40_sys #(
-    .CntWidth   (CntWidth),
-    .PhaseWidth (PhaseWidth),
-    .FreqWidth  (FreqWidth),
-    .DtWidth    (DtWidth),
-    .MinPeriod  (MinPeriod),
-    .ClkHz      (ClkHz),
-    .ClksPerBit (ClkHz / 115_200)
+    .ClkHz     (ClkHz),
+    .MinPeriod (MinPeriod),
+    .FreqMax   (FreqMax),
+    .GatePol   (GatePol)
   ) u_sys (
     .clk_i       (clk),
     .rst_ni      (rst_n),

@@ -1,12 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
 """scripts/svpwmctl.py without hardware: frame encoding (golden bytes of the protocol in
-fpga/ice40/README.md), reply decoding, unit conversions, and the Board class against a fake port
-that implements the protocol. The same encoder / decoder is run against the RTL by test_ice40_uart.py.
+fpga/ice40/README.md), reply decoding, exact unit conversions, and every command against a fake board
+(FakeBoard: the frame protocol + the register semantics of the generated map, built from regmap.py),
+directly and through the command line over a pseudo-terminal. The same encoder / decoder runs against
+the RTL in test_ice40_uart.py.
 """
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+import threading
+import time
+from fractions import Fraction
 from pathlib import Path
 
 import pytest
@@ -14,13 +20,79 @@ import pytest
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
+from svpwm_model import regmap as R  # noqa: E402
+
+CONFIG_48 = R.CONFIG.reset       # the widths of the generated map: PhaseWidth 34, FreqWidth 24, Cnt 16, Dt 10
 
 
+class FakeBoard:
+    """The board as svpwmctl sees it: uart_reg_bridge's frames (incl. NAK) and svpwm_regs' register
+    semantics (RW masks, RO ignored, w1s sticky, pulse reads 0, unmapped reads 0), from regmap.py.
+    A pyserial-like port: write(bytes) / read(n). `status` is what the core drives into STATUS; a
+    CTRL.fault_clear pulse clears its tripped bit unless the fault bit is set (the core's latch)."""
+
+    def __init__(self, clk_hz=48_000_000, answer=True, version=None):
+        self.regs = {r.addr: r.reset for r in R.REGISTERS}
+        self.regs[R.CLK_HZ.addr] = clk_hz
+        if version is not None:
+            self.regs[R.VERSION.addr] = version
+        self.status = 0
+        self.answer = answer
+        self.writes: list[tuple[int, int]] = []       # (addr, value) of every accepted write frame
+        self.reads: list[int] = []
+        self._in = b""
+        self._out = b""
+
+    def value(self, reg: R.Register) -> int:
+        return self.status if reg is R.STATUS else self.regs[reg.addr]
+
+    def _frame(self, f: bytes) -> bytes:
+        if sum(f) & 0xFF:
+            return bytes([ctl.RSP_NAK])
+        addr, reg = f[1], R.BY_ADDR.get(f[1] & 0xFC)
+        if f[0] == ctl.CMD_WRITE:
+            v = int.from_bytes(f[2:6], "little")
+            self.writes.append((addr, v))
+            if reg is not None:
+                old = self.regs[reg.addr]
+                self.regs[reg.addr] = (old & ~reg.mask("rw")) | (v & reg.mask("rw")) | (old & reg.mask("w1s")) \
+                    | (v & reg.mask("w1s"))
+                if reg is R.CTRL and R.CTRL.decode(v)["fault_clear"] and not R.STATUS.decode(self.status)["fault"]:
+                    self.status &= ~R.STATUS.field("tripped").mask
+            return bytes([ctl.RSP_ACK])
+        self.reads.append(addr)
+        d = (self.value(reg) if reg is not None else 0).to_bytes(4, "little")
+        return d + bytes([ctl.checksum(d)])
+
+    def write(self, data: bytes):
+        if not self.answer:
+            return
+        self._in += data
+        while self._in:
+            n = {ctl.CMD_WRITE: 7, ctl.CMD_READ: 3}.get(self._in[0])
+            if n is None:
+                self._in = self._in[1:]               # not a frame start: ignored
+            elif len(self._in) < n:
+                break
+            else:
+                self._out += self._frame(self._in[:n])
+                self._in = self._in[n:]
+
+    def read(self, n):
+        out, self._out = self._out[:n], self._out[n:]
+        return out
+
+
+def cmd(fb: FakeBoard, *argv, clk_hz=None) -> str:
+    args = ctl.build_parser().parse_args(list(argv))
+    return ctl.run(args, ctl.Board(fb, clk_hz))
+
+
+# --------------------------------------------------------------------------- frames and units
 def test_frames():
-    assert ctl.encode_read(0x07) == bytes([0x52, 0x07, (-(0x52 + 0x07)) & 0xFF])
-    f = ctl.encode_write(0x07, 0x0000_0600)
-    assert f[:6] == bytes([0x57, 0x07, 0x00, 0x06, 0x00, 0x00]) and sum(f) & 0xFF == 0
-    assert ctl.encode_write(0x05, -1)[2:6] == b"\xff\xff\xff\xff"
+    assert ctl.encode_read(0x30) == bytes([0x52, 0x30, (-(0x52 + 0x30)) & 0xFF]) == bytes([0x52, 0x30, 0x7E])
+    assert ctl.encode_write(0x30, 0x0000_0600) == bytes([0x57, 0x30, 0x00, 0x06, 0x00, 0x00, 0x73])
+    assert ctl.encode_write(0x10, -1)[2:6] == b"\xff\xff\xff\xff"
     reply = (0x5356_5057).to_bytes(4, "little")
     assert ctl.decode_read_reply(reply + bytes([ctl.checksum(reply)])) == 0x5356_5057
     with pytest.raises(ctl.ProtocolError):
@@ -31,76 +103,231 @@ def test_frames():
         ctl.decode_read_reply(bytes([ctl.RSP_NAK]))
     with pytest.raises(ctl.NoAnswer):
         ctl.decode_write_reply(b"")
+    with pytest.raises(ctl.ProtocolError):
+        ctl.decode_write_reply(b"X")
     with pytest.raises(ValueError):
         ctl.encode_read(256)
 
 
-def test_units():
-    c = ctl.Config.from_regs(48_000_000, (34 << 24) | (24 << 16) | (16 << 8) | 10)
-    assert (c.phase_width, c.freq_width, c.cnt_width, c.dt_width) == (34, 24, 16, 10)
-    assert c.period_word(15625) == 1536
-    assert c.dt_word(1.0) == 48
-    assert abs(c.freq_hz(c.freq_word(50.0)) - 50.0) < 0.001
-    assert c.freq_hz(c.freq_word(-50.0) & 0xFFFF_FFFF) < 0
-    assert ctl.m_word(1.0) == 0x8000 and ctl.m_word(0.5) == 0x4000
-    for bad in (lambda: c.dt_word(100.0), lambda: c.freq_word(1e5), lambda: ctl.m_word(1.5)):
+def test_names_come_from_regmap():
+    assert ctl.lookup("period") == (R.PERIOD, 0x30, None)
+    assert ctl.lookup("CLK_HZ")[1] == 0x58 and ctl.lookup("0x58")[0] is R.CLK_HZ
+    assert ctl.lookup("ctrl.MODE") == (R.CTRL, 0x0C, R.CTRL.field("mode"))
+    assert ctl.lookup("0x80") == (None, 0x80, None)
+    for bad in ("NOPE", "CTRL.nope", "0x80.x", "300"):
         with pytest.raises(ValueError):
-            bad()
+            ctl.lookup(bad)
 
 
-class FakeBoard:
-    """The protocol of uart_reg_bridge.sv in Python (for the Board class, not a model of the RTL)."""
+def test_units_exact():
+    c = ctl.Config.from_regs(48_000_000, CONFIG_48)
+    assert (c.phase_width, c.freq_width, c.cnt_width, c.dt_width) == (34, 24, 16, 10)
+    # f_out = word * f_clk / (6 * 2^34): 50 Hz -> 107374.18 -> 107374 (README), and back exactly
+    assert c.freq_lsb == Fraction(48_000_000, 6 << 34)
+    assert c.freq_word(Fraction(50)) == 107374 and c.freq_word(Fraction(-50)) == -107374
+    assert c.freq_hz(107374) == Fraction(107374 * 48_000_000, 6 << 34)
+    assert c.freq_word(Fraction(5, 2) * c.freq_lsb) == 3 and c.freq_word(Fraction(-5, 2) * c.freq_lsb) == -3
+    assert c.freq_word((2**23 - 1) * c.freq_lsb) == 2**23 - 1
+    for hz in (Fraction(2**23) * c.freq_lsb, Fraction(-(2**23)) * c.freq_lsb, Fraction(3907)):
+        with pytest.raises(ValueError, match="out of range"):
+            c.freq_word(hz)
+    assert c.half_period(Fraction(15625)) == 1536 and c.half_period(Fraction(20000)) == 1200
+    assert c.fsw_hz(1536) == 15625
+    assert c.clocks(Fraction(1), "dt") == 48 and c.clocks(Fraction(1, 96), "dt") == 1      # 0.5 clock -> 1
+    assert c.clocks(Fraction(1023, 48), "dt") == 1023 and c.us(48) == 1
+    for us in (Fraction(1024, 48), Fraction(-1), Fraction(1, 100)):        # too long, negative, rounds to 0
+        with pytest.raises(ValueError):
+            c.clocks(us, "dt")
+    assert ctl.m_word(1) == 0x8000 and ctl.m_word(Fraction("0.5")) == 0x4000
+    assert ctl.m_word(Fraction(0xFFFF, 0x8000)) == 0xFFFF
+    for m in (2, Fraction(-1, 10)):
+        with pytest.raises(ValueError, match="out of range"):
+            ctl.m_word(m)
 
-    def __init__(self, answer=True):
-        self.regs = {0: ctl.ID_VALUE, 2: (34 << 24) | (24 << 16) | (16 << 8) | 10, 3: 48_000_000,
-                     4: 0, 5: 0, 6: 0, 7: 1536, 8: 48, 9: 0}
-        self.out = b""
-        self.answer = answer
 
-    def write(self, frame: bytes):
-        if not self.answer:
-            return
-        if sum(frame) & 0xFF:
-            self.out = bytes([ctl.RSP_NAK])
-        elif frame[0] == ctl.CMD_WRITE:
-            self.regs[frame[1]] = int.from_bytes(frame[2:6], "little")
-            self.out = bytes([ctl.RSP_ACK])
-        else:
-            d = self.regs.get(frame[1], 0).to_bytes(4, "little")
-            self.out = d + bytes([ctl.checksum(d)])
-
-    def read(self, n):
-        out, self.out = self.out[:n], self.out[n:]
-        return out
-
-
-def test_board_commands():
+# --------------------------------------------------------------------------- commands on the fake board
+def test_set_commands_write_exact_words():
     fb = FakeBoard()
-    b = ctl.Board(fb)
-    p = ctl.build_parser()
-    assert "15625.0" in ctl.run(p.parse_args(["status"]), b)
-    ctl.run(p.parse_args(["set-period", "--fsw", "20000"]), b)
-    assert fb.regs[7] == 1200
-    ctl.run(p.parse_args(["set-dt", "0.5"]), b)
-    assert fb.regs[8] == 24
-    ctl.run(p.parse_args(["set-m", "0.9"]), b)
-    assert fb.regs[6] == round(0.9 * 0x8000)
-    ctl.run(p.parse_args(["set-freq", "50"]), b)
-    assert fb.regs[5] == ctl.Config.from_regs(48_000_000, fb.regs[2]).freq_word(50)
-    ctl.run(p.parse_args(["start"]), b)
-    assert fb.regs[4] == 1
-    ctl.run(p.parse_args(["write", "PERIOD", "0x600"]), b)
-    assert ctl.run(p.parse_args(["read", "period"]), b) == "0x00000600"
-    with pytest.raises(ctl.NoAnswer):
-        ctl.Board(FakeBoard(answer=False)).read(0)
+    assert cmd(fb, "set-dt", "0.5") == "DT = 24 clocks (0.5 us)" and fb.regs[R.DT.addr] == 24
+    assert cmd(fb, "set-mp", "0.25") == "MP = 12 clocks (0.25 us)" and fb.regs[R.MP.addr] == 12
+    assert cmd(fb, "set-period", "--fsw", "20000") == "PERIOD = 1200 clocks (f_sw 20000 Hz)"
+    assert fb.regs[R.PERIOD.addr] == 1200 and fb.writes[-1] == (R.PERIOD.addr, 1200)
+    cmd(fb, "set-period", "--clocks", "777")
+    assert fb.regs[R.PERIOD.addr] == 777
+    assert cmd(fb, "set-m", "0.9") == "M = 0x7333 (m = 0.899994)" and fb.regs[R.M.addr] == 0x7333
+    cmd(fb, "set-freq", "50")
+    assert fb.regs[R.FREQ.addr] == 107374
+    cmd(fb, "set-freq", "-50")
+    assert fb.writes[-1] == (R.FREQ.addr, (-107374) & 0xFFFFFF)          # 24-bit two's complement field
+    assert cmd(fb, "read", "FREQ.freq") == "-107374"
+    cmd(fb, "set-mode", "vf", "--dpwm", "dpwm1", "--upd", "both")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=1, dpwm=3, upd=2)
+    cmd(fb, "start")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1, mode=1, dpwm=3, upd=2)      # other fields kept
+    cmd(fb, "set-mode", "polar")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1, mode=2, dpwm=3, upd=2)
+    cmd(fb, "stop")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=2, dpwm=3, upd=2)
 
 
-def test_cli_help_and_errors():
-    exe = [sys.executable, str(REPO / "scripts/svpwmctl.py")]
-    for cmd in ([], ["status"], ["set-period"], ["set-dt"], ["read"], ["clear-fault"]):
-        r = subprocess.run(exe + cmd + ["--help"], capture_output=True, text=True)
-        assert r.returncode == 0 and "usage:" in r.stdout
-    r = subprocess.run(exe + ["status"], capture_output=True, text=True, env={"PATH": ""})
+def test_status_and_reads():
+    fb = FakeBoard()
+    cmd(fb, "set-dt", "1")
+    cmd(fb, "set-freq", "50")
+    fb.status = R.STATUS.encode(running=1, sector=4, sat=1)
+    st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
+    assert st["running"] == "1" and st["sector"] == "4" and st["sat"] == "1" and st["tripped"] == "0"
+    assert st["freq_word"] == "107374" and st["freq_hz"] == "49.999915"     # 107374 * 48e6 / (6 * 2^34)
+    assert st["fsw_hz"] == "15625" and st["period_clocks"] == "1536" and st["dt_us"] == "1"
+    assert st["clk_hz"] == "48000000" and st["mode"] == "freq" and st["m"] == "0"
+    assert cmd(fb, "read", "period") == "0x00000600  period=1536"
+    assert cmd(fb, "read", "status.sector") == "4"
+    assert cmd(fb, "read", "0x80") == "0x00000000"
+    assert cmd(fb, "read", "CLK_HZ") == "0x02dc6c00  clk_hz=48000000"
+    assert cmd(fb, "info").startswith("ID 0x53565057 (svpwm), register map 2.1, clock 48000000 Hz")
+    dump = cmd(fb, "dump").splitlines()
+    assert [line.split()[1] for line in dump] == [r.name for r in R.REGISTERS]
+    cmd(fb, "write", "CTRL.mode", "7")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=7)
+    cmd(fb, "write", "ctrl", "0x101")
+    assert fb.regs[R.CTRL.addr] == 0x101
+    cmd(fb, "write", "FREQ.freq", "-1")
+    assert fb.regs[R.FREQ.addr] == 0xFFFFFF
+
+
+def test_clear_fault():
+    fb = FakeBoard()
+    fb.status = R.STATUS.encode(tripped=1, fault=1)
+    with pytest.raises(ctl.ProtocolError, match="fault input is active"):
+        cmd(fb, "clear-fault")
+    assert fb.writes[-1] == (R.CTRL.addr, R.CTRL.encode(fault_clear=1))
+    fb.status = R.STATUS.encode(tripped=1)
+    assert cmd(fb, "clear-fault") == "fault cleared" and fb.status == 0
+
+
+def test_board_clock_from_clk_hz():
+    fb = FakeBoard(clk_hz=12_000_000)                  # CLK_HZ decides the conversions
+    cmd(fb, "set-period", "--fsw", "20000")
+    assert fb.regs[R.PERIOD.addr] == 300
+    fb = FakeBoard(clk_hz=0)                           # not stated: --clk-hz needed
+    with pytest.raises(ValueError, match="--clk-hz"):
+        cmd(fb, "set-dt", "1")
+    assert cmd(fb, "set-dt", "1", clk_hz=24_000_000) == "DT = 24 clocks (1 us)"
+    with pytest.raises(ValueError, match="disagrees"):
+        cmd(FakeBoard(), "set-dt", "1", clk_hz=24_000_000)
+    with pytest.raises(ctl.ProtocolError, match="version 1.0"):
+        cmd(FakeBoard(version=0x0001_0000), "set-dt", "1")
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["set-freq", "3907"], "out of range"),
+    (["set-freq", "fifty"], "not a number"),
+    (["set-m", "2"], "out of range"),
+    (["set-period", "--fsw", "100"], "out of range 48 .. 65535"),       # 240000 clocks
+    (["set-period", "--clocks", "47"], "out of range 48 .. 65535"),     # below MinPeriod
+    (["set-dt", "30"], "at most 1023 clocks"),
+    (["set-dt", "16.5"], "PERIOD >= 2 \\(DT \\+ MP\\) = 1584"),         # 792 clocks vs PERIOD 1536
+    (["write", "CTRL.mode", "8"], "out of range 0 .. 7"),
+    (["write", "FREQ.freq", "8388608"], "out of range -8388608 .. 8388607"),
+    (["write", "STATUS.sector", "1"], "read-only"),
+    (["write", "PERIOD", "0x1_0000_0000"], "32 bits"),
+    (["start"], "DT is 0"),
+])
+def test_bad_values_refused_nothing_written(argv, match):
+    fb = FakeBoard()
+    with pytest.raises(ValueError, match=match):
+        cmd(fb, *argv)
+    assert fb.writes == [], f"{argv}: wrote {fb.writes} although the value was refused"
+
+
+def test_locked_and_period_rules():
+    fb = FakeBoard()
+    cmd(fb, "set-period", "--clocks", "48")
+    with pytest.raises(ValueError, match="PERIOD >= 2"):
+        cmd(fb, "set-dt", "0.52")                      # 25 clocks: 2 * 25 > 48
+    cmd(fb, "set-dt", "0.5")                           # 24 clocks: 2 * 24 = 48 fits
+    cmd(fb, "set-period", "--clocks", "1536")
+    fb.status = R.STATUS.encode(locked=1)
+    n = len(fb.writes)
+    with pytest.raises(ValueError, match="locked"):
+        cmd(fb, "set-dt", "1")
+    assert len(fb.writes) == n
+    cmd(fb, "start")
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1)
+
+
+def test_no_answer():
+    with pytest.raises(ctl.NoAnswer, match="does not answer"):
+        cmd(FakeBoard(answer=False), "read", "ID")
+
+
+# --------------------------------------------------------------------------- the command line
+def _cli(args, env=None, timeout=30):
+    return subprocess.run([sys.executable, str(REPO / "scripts/svpwmctl.py")] + args, capture_output=True,
+                          text=True, env=env, timeout=timeout)
+
+
+def test_cli_help_and_port_errors():
+    cmds = ["read", "write", "dump", "info", "status", "start", "stop", "clear-fault", "set-freq", "set-m",
+            "set-period", "set-dt", "set-mp", "set-mode"]
+    for c in [[]] + [[c] for c in cmds]:
+        r = _cli(c + ["--help"])
+        assert r.returncode == 0 and "usage:" in r.stdout, (c, r.stderr)
+    env = {k: v for k, v in os.environ.items() if k != "SVPWM_PORT"}
+    r = _cli(["status"], env=env)
     assert r.returncode != 0 and "no serial port" in r.stderr
-    r = subprocess.run(exe + ["-p", "/dev/does-not-exist", "status"], capture_output=True, text=True)
-    assert r.returncode != 0 and "cannot open serial port" in r.stderr
+    r = _cli(["-p", "/dev/does-not-exist", "status"])
+    assert r.returncode != 0 and "cannot open serial port /dev/does-not-exist" in r.stderr
+
+
+class PtyBoard:
+    """A pseudo-terminal whose far end is a FakeBoard (or silent): the CLI opens the slave with pyserial."""
+
+    def __init__(self, fb: FakeBoard):
+        self.fb = fb
+        self.master, slave = os.openpty()
+        self.path = os.ttyname(slave)
+        os.close(slave)
+        self.stop = False
+        self.t = threading.Thread(target=self._serve, daemon=True)
+        self.t.start()
+
+    def _serve(self):
+        import select
+        while not self.stop:
+            if select.select([self.master], [], [], 0.05)[0]:
+                try:
+                    data = os.read(self.master, 64)
+                except OSError:                       # slave not open (yet / any more)
+                    time.sleep(0.01)
+                    continue
+                self.fb.write(data)
+                out = self.fb.read(1 << 16)
+                if out:
+                    os.write(self.master, out)
+
+    def close(self):
+        self.stop = True
+        self.t.join()
+        os.close(self.master)
+
+
+def test_cli_over_pty():
+    pty = PtyBoard(FakeBoard())
+    try:
+        r = _cli(["-p", pty.path, "set-freq", "50"])
+        assert r.returncode == 0 and r.stdout.strip() == "FREQ = 107374 (49.999915 Hz)", r.stderr
+        assert pty.fb.regs[R.FREQ.addr] == 107374
+        r = _cli(["-p", pty.path, "set-m", "3"])
+        assert r.returncode == 4 and "error: modulation index 3 is out of range" in r.stderr
+        assert pty.fb.regs[R.M.addr] == 0
+        r = _cli(["-p", pty.path, "read", "CLK_HZ.clk_hz"])
+        assert r.returncode == 0 and r.stdout.strip() == "48000000"
+    finally:
+        pty.close()
+    pty = PtyBoard(FakeBoard(answer=False))            # port opens, nobody answers: timeout
+    try:
+        r = _cli(["-p", pty.path, "-t", "0.2", "status"])
+        assert r.returncode == 3 and f"the board on {pty.path} does not answer (timeout" in r.stderr, r.stderr
+    finally:
+        pty.close()

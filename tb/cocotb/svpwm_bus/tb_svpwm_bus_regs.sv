@@ -9,7 +9,8 @@
 module tb_svpwm_bus_regs #(
   parameter int         Bus       = 0,
   parameter int         AddrWidth = 8,
-  parameter int         GatePol   = 0       // int here: -G / -P pass 32-bit values
+  parameter int         GatePol   = 0,      // int here: -G / -P pass 32-bit values
+  parameter int         ClkHz     = 0       // CLK_HZ value
 ) (
   input  wire logic                 rst_n,
   // AXI4-Lite (Bus = 0)
@@ -86,7 +87,7 @@ module tb_svpwm_bus_regs #(
   end
 
   // register outputs, probed by cocotb as u_regs.<name>_o
-  svpwm_regs #(.AddrWidth(AddrWidth), .GatePol(2'(GatePol))) u_regs (
+  svpwm_regs #(.AddrWidth(AddrWidth), .GatePol(2'(GatePol)), .ClkHz(ClkHz)) u_regs (
     .clk_i(clk), .rst_ni(rst_n), .req_i(req), .we_i(we), .addr_i(addr), .wdata_i(wdata), .be_i(be),
     .rdata_o(rdata),
     .ctrl_en_o(), .ctrl_sync_en_o(), .ctrl_trip_cbc_o(), .ctrl_safe_lo_o(), .ctrl_pol_o(), .ctrl_lock_o(),

@@ -20,6 +20,7 @@ from svpwm_model import regmap as R
 
 HERE = Path(__file__).resolve().parent
 MIN_PERIOD = 48
+CLK_HZ = {"axil": 48_000_000, "wb": 100_000_000, "wbc": 12_000_000}   # ClkHz per wrapper variant
 # RO live field (svpwm_regs port) -> core output it must read
 RO_MAP = {"status_running_i": "running_o", "status_sat_i": "sat_o", "status_cfg_err_i": "cfg_err_o",
           "status_period_clamp_i": "period_clamp_o", "status_freq_clamp_i": "freq_clamp_o",
@@ -68,7 +69,7 @@ class TB:
 @cocotb.test()
 async def fields_reach_core(dut):
     """Reset values at the core inputs; every RW field (walking ones, all ones) reads back and drives
-    its core input; CONFIG matches the core's port widths."""
+    its core input; CONFIG matches the core's port widths; CLK_HZ reads the wrapper's ClkHz."""
     tb = TB(dut)
     await tb.reset()
     for r in R.REGISTERS:
@@ -89,6 +90,7 @@ async def fields_reach_core(dut):
     cfg = await tb.rd(R.CONFIG)
     assert cfg["cnt_width"] == len(tb.core.carrier_o) and cfg["freq_width"] == len(tb.core.freq_i)
     assert cfg["dt_width"] == len(tb.core.dt_i), cfg
+    assert await tb.bus.read(R.CLK_HZ.addr) == CLK_HZ[tb.kind]
 
 
 @cocotb.test()
@@ -210,5 +212,5 @@ def test_svpwm_bus(sim, bus):
     testcase = None
     run_sim(sim, toplevel="tb_svpwm_bus", sources=core + [HERE / "tb_svpwm_bus.sv"],
             test_module="test_svpwm_bus", test_dir=HERE,
-            parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "MinPeriod": MIN_PERIOD},
+            parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "MinPeriod": MIN_PERIOD, "ClkHz": CLK_HZ[bus]},
             build_name=bus, extra_env={"SVPWM_BUS": bus}, testcase=testcase)

@@ -20,6 +20,8 @@ from svpwm_model import regmap as R
 
 HERE = Path(__file__).resolve().parent
 ADDR_WIDTH = 8
+# ClkHz per bus variant (CLK_HZ reads it): 0 (not stated), a typical clock, the largest value
+CLK_HZ = {"axil": 48_000_000, "wb": 0, "wbc": 0x7FFF_FFFF}
 CLK_NS = 10
 # harness status input bit -> STATUS field, in the harness's packing order
 STATUS_BITS = ["running", "sat", "cfg_err", "period_clamp", "freq_clamp", "fault", "tripped", "locked"]
@@ -31,7 +33,8 @@ class TB:
     def __init__(self, dut):
         self.dut = dut
         self.bus = None
-        self.gate_pol = int(os.environ.get("SVPWM_GATEPOL", "0"))
+        # wrapper parameters that give field values (rst_param), as passed to the harness
+        self.params = {"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"])}
         self.rng = random.Random(int(os.environ.get("SVPWM_SEED", "1")))
 
     async def reset(self, status=0, carrier=0, period_act=0, cmp=0):
@@ -53,7 +56,7 @@ class TB:
         return int(getattr(self.dut.u_regs, f.port).value)
 
     def reset_of(self, f: R.Field) -> int:
-        return self.gate_pol if f.rst_param == "GatePol" else f.reset
+        return self.params[f.rst_param] if f.rst_param else f.reset    # KeyError: a new rst_param
 
     def expected_reset(self, reg: R.Register) -> int:
         """Reset read value (status fields: what the harness drives, 0 here)."""
@@ -85,6 +88,7 @@ async def reset_values(dut):
                 exp = 0 if f.kind == "pulse" else tb.reset_of(f)
                 assert tb.port(f) == exp, f"{r.name}.{f.name}: port {f.port} = {tb.port(f)} after reset != {exp}"
     assert R.ID.reset == 0x53565057 and await tb.bus.read(R.ID.addr) == 0x53565057
+    assert await tb.bus.read(R.CLK_HZ.addr) == CLK_HZ[tb.bus.name], "CLK_HZ is not the ClkHz parameter"
 
 
 @cocotb.test()
@@ -285,5 +289,6 @@ def test_svpwm_bus_regs(sim, bus):
             sources=[REPO / "rtl/svpwm_regs.sv", REPO / "rtl/svpwm_axil_if.sv", REPO / "rtl/svpwm_wb_if.sv",
                      HERE / "tb_svpwm_bus_regs.sv"],
             test_module="test_svpwm_bus_regs", test_dir=HERE,
-            parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "AddrWidth": ADDR_WIDTH, "GatePol": gate_pol},
-            build_name=bus, extra_env={"SVPWM_BUS": bus, "SVPWM_GATEPOL": gate_pol})
+            parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "AddrWidth": ADDR_WIDTH, "GatePol": gate_pol,
+                        "ClkHz": CLK_HZ[bus]},
+            build_name=bus, extra_env={"SVPWM_BUS": bus, "SVPWM_GATEPOL": gate_pol, "SVPWM_CLKHZ": CLK_HZ[bus]})

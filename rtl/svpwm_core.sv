@@ -18,9 +18,9 @@
 // (SVPWM or bus-clamped DPWM). Invalid mode / update codes: zero vector / valley update + cfg_err_o.
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, mode_i) is sampled SampleLead = 38 clocks before it (compute 33 + minimum pulse 4 + load
-// 1), in the clock before count == 38 (down) / P - 38 (up). period_i, dt_i, mp_i, upd_i, presc_i are
-// sampled there before every valley and take effect at it; a changed period, dead time or minimum
+// vf_*, dpwm_i, mode_i) is sampled SampleLead = 39 clocks before it (compute 34 + minimum pulse 4 + load
+// 1), in the clock before count == 39 (down) / P - 39 (up). period_i, dt_i, mp_i, upd_i, presc_i are
+// sampled there before every valley (period_i as it was one clock earlier) and take effect at it; a changed period, dead time or minimum
 // pulse forces an update at that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
 // time to a turned-on gate. freq_i steps the angle from the sample on. After en_i rises the gates stay

@@ -4,8 +4,8 @@
 // only has to wake up on events (start, done):
 //   chk_o[0]  an output (sector_o, cmp_o, sat_o, err_o) changed on a clock without done_o
 //   chk_o[1]  done_o high for more than one clock
-//   chk_o[2]  done_o not preceded by exactly DutyLatency - 1 = 32 busy_o clocks, done_o with busy_o,
-//             or busy_o longer than 32 clocks
+//   chk_o[2]  done_o not preceded by exactly DutyLatency - 1 = 33 busy_o clocks, done_o with busy_o,
+//             or busy_o longer than 33 clocks
 // The flags are sticky until rst_ni.
 `timescale 1ns / 1ps
 `default_nettype none

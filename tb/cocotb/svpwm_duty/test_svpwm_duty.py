@@ -2,20 +2,20 @@
 """svpwm_duty against the golden model fixed.modulate (exact, ==) in every input mode, and its handshake.
 
 Handshake (RTL header): start_i high in cycle c (sampled by the rising edge that ends cycle c) is accepted
-when idle; busy_o is high in cycles c+1 .. c+32, done_o is a one-cycle pulse in cycle c+33
-(DUTY_LATENCY = 33: done_o rises 32 clock periods after the edge that sampled start_i), together with the
+when idle; busy_o is high in cycles c+1 .. c+33, done_o is a one-cycle pulse in cycle c+34
+(DUTY_LATENCY = 34: done_o rises 33 clock periods after the edge that sampled start_i), together with the
 new sector_o / cmp_o / sat_o / err_o, which then hold until the next done_o; start_i is ignored while busy_o.
-The done cycle is idle: a start there is accepted (back to back, one result every 33 clocks).
+The done cycle is idle: a start there is accepted (back to back, one result every 34 clocks).
 
 Checks:
 * `run_vectors` (event driven: wakes at the start edge, at done_o and once more per vector): results ==
-  fixed.modulate; done_o exactly 32 periods after the sampling edge; one clock after the start busy_o = 1,
+  fixed.modulate; done_o exactly 33 periods after the sampling edge; one clock after the start busy_o = 1,
   done_o = 0 and the previous results still held. While busy, start_i stays HIGH with scrambled inputs (and
   sometimes they are scrambled again mid-computation): they must be ignored.
 * the harness (tb_svpwm_duty.sv) checks on every clock in SystemVerilog: outputs change only with done_o,
-  done_o one clock wide, exactly 32 busy clocks before each done_o; its sticky chk_o is asserted 0.
+  done_o one clock wide, exactly 33 busy clocks before each done_o; its sticky chk_o is asserted 0.
 * `protocol`: a per-clock reference of the handshake, every output on every clock (short), incl. abort_i pulses.
-* `abort` (and 3 % of the vectors in every run): abort_i 0 .. 32 clocks after a start: back to idle at once, no
+* `abort` (and 3 % of the vectors in every run): abort_i 0 .. 33 clocks after a start: back to idle at once, no
   done_o, the previous results hold (abort_i with start_i: the start is not taken); the next vector is exact.
 
 Vectors (`directed`, the same on both simulators; `rand_vectors`: seeded, 20000 on Verilator, 1500 on Icarus):
@@ -140,7 +140,7 @@ class DutyTB:
 
     async def aborted_start(self, rng: random.Random, k: int):
         """Start junk, pulse abort_i k clocks after the start edge (k = 0: together with start_i, which then
-        is not accepted; k = 31, 32: in the last steps, so no done_o must follow). The previous results must
+        is not accepted; k = 32, 33: in the last steps, so no done_o must follow). The previous results must
         hold (the harness checker flags any output change without done_o); busy_o must be low afterwards."""
         dut = self.dut
         self.drive(1, self.junk(rng))
@@ -401,7 +401,7 @@ async def protocol(dut):
 
 @cocotb.test()
 async def abort(dut):
-    """abort_i k = 0 .. 32 clocks after a start (k = 0: with start_i): back to idle, no done_o, results held;
+    """abort_i k = 0 .. 33 clocks after a start (k = 0: with start_i): back to idle, no done_o, results held;
     then a vector computes correctly."""
     tb = DutyTB(dut)
     rng = random.Random(0xAB0 + tb.W)

@@ -1,7 +1,7 @@
 # svpwm build & test entry point.  Everything runs inside a local venv (.venv)
 # that this Makefile creates from requirements.txt.
 #
-#   make test                 rom-check + model tests + lint + sim (both simulators)
+#   make test                 rom-check + model tests + lint + sim (both simulators) + iCEBreaker bitstream
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
 #   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
 
@@ -56,6 +56,7 @@ $(STAMP): requirements.txt
 
 test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
+	@$(MAKE) bitstream-test
 
 # SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))

@@ -4,6 +4,7 @@
 #
 #   make bitstream BOARD=icebreaker|icestick   build/ice40/<board>/<board>.bin + report.json + table
 #   make bitstreams                            both boards (fails when timing is not met)
+#   make bitstream-test                        the boards make test builds (ICE40_TEST_BOARDS)
 #   make synth-bench [SEEDS=5]                 out-of-context core benchmark -> build/ice40/synth_bench.json
 #   make ice40-test                            UART bridge cocotb test, svpwmctl and FuseSoC tests
 #   make lint-ice40                            lint the board system svpwm_ice40_sys (`make lint` runs it too)
@@ -26,7 +27,11 @@ ICE40_PACKAGE_icestick   := tq144
 # The core's widths are fixed by the register map (rdl/svpwm.rdl); it does not fit the HX1K (README)
 ICE40_PARAMS_icestick    ?=
 
-.PHONY: bitstream bitstreams synth-bench ice40-test prog lint-ice40
+.PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog
+
+# Boards `make test` builds: the iCEstick's HX1K (1280 LC) cannot hold the core (about 4200 LC on UP5K),
+# so its build fails at placement (README, fpga/ice40/README.md)
+ICE40_TEST_BOARDS ?= icebreaker lint-ice40
 
 # The board system (UART bridge + svpwm_mmio) under the rules of `make lint`; the board tops need the
 # vendor PLL primitive and are elaborated by the bitstream build.
@@ -46,6 +51,9 @@ bitstream: $(STAMP)
 
 bitstreams: $(STAMP)
 	@rc=0; for b in $(ICE40_BOARDS); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
+
+bitstream-test: $(STAMP)
+	@rc=0; for b in $(ICE40_TEST_BOARDS); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
 
 synth-bench: $(STAMP)
 	$(PY) scripts/synth_bench.py --seeds $(SEEDS)

@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, Timer
+from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge, Timer
 
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
@@ -287,9 +287,9 @@ async def malformed_frames_rejected(dut):
         assert await u.quiet() == b""
         for i in range(1, len(good)):                              # framing error (stop bit low) in byte i
             await u.send(good[:i])
-            # the receiver re-arms in mid stop bit and takes the rest of the low stop bit for a start bit:
-            # an idle line of 12 bits makes that phantom byte 0xFF (ignored) before the rest of the frame
-            await u.send(good[i:i + 1], stop_ok=False, gap_bits=12)
+            # after a low stop bit the receiver waits for the line to go high: one idle bit, and the rest
+            # of the frame is received as bytes again (no phantom byte from the rest of the stop bit)
+            await u.send(good[i:i + 1], stop_ok=False, gap_bits=1)
             await u.send(good[i + 1:])
             assert await u.quiet() == b"", f"reply to a frame with a framing error in byte {i}"
     await u.send(ctl.encode_read(R.M.addr)[:2] + b"\x00")         # read with a bad checksum
@@ -304,6 +304,32 @@ async def malformed_frames_rejected(dut):
     g.stop()
     await u.write(R.PERIOD, 1234)                                  # the link still works
     assert await u.read(R.PERIOD) == 1234
+
+
+@cocotb.test()
+async def break_condition(dut):
+    """A break (line low for 20.5 bit times, longer than a frame) is one framing error and no byte: the receiver
+    waits for the line to go high before it looks for a start bit; a frame right after it is served."""
+    u = await setup(dut)
+    rx = dut.u_sys.u_bridge.u_rx
+    counts = {"valid": 0, "frame_err": 0}
+
+    async def count():
+        while True:
+            await RisingEdge(dut.clk)
+            counts["valid"] += int(rx.valid_o.value)
+            counts["frame_err"] += int(rx.frame_err_o.value)
+
+    task = cocotb.start_soon(count())
+    dut.rx_i.value = 0
+    await ClockCycles(dut.clk, CPB * 41 // 2)
+    dut.rx_i.value = 1
+    await ClockCycles(dut.clk, CPB * 2)
+    assert counts == {"valid": 0, "frame_err": 1}, f"after a break: {counts}"
+    await u.send(ctl.encode_read(R.ID.addr))
+    reply = bytes(b for b, _ in await u.recv(5))
+    assert int.from_bytes(reply[:4], "little") == R.ID.reset, f"read after a break: {reply.hex()}"
+    task.kill()
 
 
 @cocotb.test()

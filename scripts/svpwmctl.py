@@ -8,7 +8,9 @@ model/svpwm_model/regmap.py). Protocol (fpga/ice40/README.md, uart_reg_bridge.sv
   read   'R' addr chk               -> d0 d1 d2 d3 chk
   a frame with a bad checksum       -> 'N'
 Physical units use the core clock the board states in CLK_HZ (--clk-hz when it reads 0) and the
-widths in CONFIG; values out of range are refused, never clamped.
+widths in CONFIG; values out of range are refused, never clamped. A board whose FEATURES.compact reads 1
+has the compact variant (FREQ mode, continuous SVPWM, valley updates; e.g. the iCEstick): writes to the
+registers and fields it does not have (docs/registers.md, column compact) are refused, nothing is written.
 
 Examples:
   svpwmctl.py -p /dev/ttyUSB1 status
@@ -37,6 +39,12 @@ MIN_PERIOD = 48          # MinPeriod of the board designs (svpwm_ice40_sys defau
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
 UPD = {"valley": 0, "peak": 1, "both": 2}
+COMPACT_TEXT = "compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start"
+
+
+def absent_mask(reg: R.Register) -> int:
+    """Bits of `reg` that the compact variant does not have (all of them for an absent register)."""
+    return reg.mask() & ~(sum(f.mask for f in reg.fields if f.compact) if reg.compact else 0)
 
 
 class ProtocolError(RuntimeError):
@@ -215,6 +223,7 @@ class Board:
         self.clk_hz_override = clk_hz
         self.name = name
         self._cfg: Config | None = None
+        self._compact: bool | None = None
 
     def _xfer(self, frame: bytes, n: int) -> bytes:
         if hasattr(self.port, "reset_input_buffer"):
@@ -235,13 +244,29 @@ class Board:
     def read_reg(self, reg: R.Register) -> dict[str, int]:
         return reg.decode(self.read(reg.addr))
 
+    def compact(self) -> bool:
+        """The board has the compact variant (FEATURES.compact; maps before 2.2 read 0 there: full)."""
+        if self._compact is None:
+            self._compact = bool(self.read_reg(R.FEATURES)["compact"])
+        return self._compact
+
+    def check_present(self, reg: R.Register, mask: int) -> None:
+        """Refuse a write of the bits `mask` of `reg` if the board does not have them."""
+        bad = mask & absent_mask(reg)
+        if bad and self.compact():
+            what = (reg.name if not reg.compact else
+                    ", ".join(f"{reg.name}.{f.name}" for f in reg.fields if f.mask & bad))
+            raise ValueError(f"{what}: not on this board ({COMPACT_TEXT}); nothing written")
+
     def write_fields(self, reg: R.Register, **values: int) -> int:
         """Read-modify-write of the named fields (range-checked); other RW fields keep their values,
-        pulse fields not named are written 0. Returns the word written."""
+        pulse fields not named are written 0. Fields the board does not have (compact variant) are
+        refused. Returns the word written."""
         for name, v in values.items():
             f = reg.field(name)
             if not f.writable:
                 raise ValueError(f"{reg.name}.{name} is read-only")
+            self.check_present(reg, f.mask)
             lo, hi = field_range(f)
             if not lo <= v <= hi:
                 raise ValueError(f"{reg.name}.{name} = {v} is out of range {lo} .. {hi} ({f.width} bits)")
@@ -270,12 +295,14 @@ class Board:
 
     def status(self) -> dict[str, object]:
         cfg = self.config()
-        v = {r.name: self.read(r.addr) for r in R.REGISTERS if r.name not in ("ID", "VERSION", "CONFIG")}
+        compact = self.compact()
+        v = {r.name: self.read(r.addr) for r in R.variant(compact) if r.name not in ("ID", "VERSION", "CONFIG")}
         st, ctrl = R.STATUS.decode(v["STATUS"]), R.CTRL.decode(v["CTRL"])
         freq = R.FREQ.decode(v["FREQ"])["freq"]
         out: dict[str, object] = {k: st[k] for k in ("running", "tripped", "fault", "sat", "cfg_err",
                                                       "period_clamp", "freq_clamp", "locked", "sector")}
         out.update({
+            "variant": "compact" if compact else "full",
             "en": ctrl["en"],
             "mode": next((k for k, x in MODES.items() if x == ctrl["mode"]), f"invalid ({ctrl['mode']})"),
             "dpwm": next(k for k, x in DPWM.items() if x == ctrl["dpwm"]),
@@ -283,7 +310,7 @@ class Board:
             "freq_hz": _fmt(cfg.freq_hz(freq), 8), "freq_word": freq,
             "m": _fmt(Fraction(v["M"], 0x8000)), "m_word": v["M"],
             "fsw_hz": _fmt(cfg.fsw_hz(v["PERIOD"]), 8) if v["PERIOD"] else "-", "period_clocks": v["PERIOD"],
-            "period_act_clocks": v["PERIOD_ACT"],
+            "period_act_clocks": v.get("PERIOD_ACT", "-"),          # not in the compact variant
             "dt_us": _fmt(cfg.us(v["DT"])), "dt_clocks": v["DT"],
             "mp_us": _fmt(cfg.us(v["MP"])), "mp_clocks": v["MP"],
             "clk_hz": cfg.clk_hz,
@@ -325,8 +352,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("write", "write a register (raw 32-bit value) or one field (read-modify-write, range-checked)")
     p.add_argument("reg", help="REG, REG.FIELD or a byte address")
     p.add_argument("value", help="integer, e.g. 1536, 0x600, -5 (signed fields)")
-    add("dump", "read every register of the map, with its fields")
-    add("info", "ID, register map version, core widths (CONFIG) and clock (CLK_HZ)")
+    add("dump", "read every register of the map (of the board's variant), with its fields")
+    add("info", "ID, register map version, core widths (CONFIG), clock (CLK_HZ) and variant (FEATURES)")
     add("status", "the state in physical units and the decoded STATUS fields")
     p = add("start", "enable modulation (CTRL.en = 1; the other CTRL fields are kept)")
     p.add_argument("--allow-zero-dt", action="store_true",
@@ -383,11 +410,13 @@ def run(args, board: Board) -> str:
         else:
             if not -(1 << 31) <= v <= 0xFFFF_FFFF:
                 raise ValueError(f"{v} does not fit 32 bits")
+            if reg is not None:      # an absent register, or ones in absent fields, on a compact board
+                board.check_present(reg, reg.mask() if not reg.compact else v & 0xFFFF_FFFF)
             board.write(addr, v)
         return "ok"
     if c == "dump":
         lines = []
-        for r in R.REGISTERS:
+        for r in R.variant(board.compact()):
             v = board.read(r.addr)
             fields = ", ".join(f"{k}={x}" for k, x in r.decode(v).items())
             lines.append(f"0x{r.addr:02x} {r.name:10} 0x{v:08x}  {fields}")
@@ -398,7 +427,8 @@ def run(args, board: Board) -> str:
         return (f"ID 0x{ID_VALUE:08x} (svpwm), register map {ver['major']}.{ver['minor']}, "
                 f"clock {cfg.clk_hz} Hz{' (--clk-hz)' if not board.read(R.CLK_HZ.addr) else ''}, "
                 f"PhaseWidth {cfg.phase_width}, FreqWidth {cfg.freq_width}, CntWidth {cfg.cnt_width}, "
-                f"DtWidth {cfg.dt_width}")
+                f"DtWidth {cfg.dt_width}, "
+                + (f"{COMPACT_TEXT} (FEATURES.compact)" if board.compact() else "full variant"))
     if c == "status":
         return "\n".join(f"{k:18} {v}" for k, v in board.status().items())
     if c == "start":

@@ -21,7 +21,7 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x1
+#define SVPWM__VERSION__MINOR_reset 0x2
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16
@@ -241,6 +241,12 @@ extern "C" {
 #define SVPWM__CLK_HZ__CLK_HZ_bw 32
 #define SVPWM__CLK_HZ__CLK_HZ_reset 0x0
 
+// reg - svpwm::FEATURES
+#define SVPWM__FEATURES__COMPACT_bm 0x1
+#define SVPWM__FEATURES__COMPACT_bp 0
+#define SVPWM__FEATURES__COMPACT_bw 1
+#define SVPWM__FEATURES__COMPACT_reset 0x0
+
 // addrmap - svpwm
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -266,10 +272,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t CMP_B;
     uint32_t CMP_C;
     uint32_t CLK_HZ;
+    uint32_t FEATURES;
 } svpwm_t;
 
 
-static_assert(sizeof(svpwm_t) == 0x5c, "Packing error");
+static_assert(sizeof(svpwm_t) == 0x60, "Packing error");
 
 #ifdef __cplusplus
 }

@@ -4,13 +4,16 @@
 
 Field kinds: const (RO constant), status (RO, live from the core), rw, w1s (write 1 sets, sticky
 until reset), pulse (write 1 gives a one-clock pulse, reads 0). Byte addresses, 32-bit registers.
+compact: the register / field exists in the compact variant (svpwm_regs parameter Compact = 1);
+there the others read 0 and ignore writes. variant(compact) gives the map a variant has.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 DATA_WIDTH = 32
-SIZE = 0x5C  # bytes; higher addresses read 0
+SIZE = 0x60  # bytes; higher addresses read 0
+VARIANT_PARAM = "Compact"  # svpwm_regs parameter: 1 = compact variant
 
 
 @dataclass(frozen=True)
@@ -23,6 +26,7 @@ class Field:
     signed: bool = False
     rst_param: str | None = None  # RTL reset value is this wrapper parameter (reset = default)
     port: str | None = None  # svpwm_regs port of the field (None: constant)
+    compact: bool = False  # exists in the compact variant
 
     @property
     def mask(self) -> int:
@@ -43,6 +47,7 @@ class Register:
     name: str
     addr: int
     fields: tuple[Field, ...]
+    compact: bool = False  # exists in the compact variant
 
     @property
     def reset(self) -> int:
@@ -77,37 +82,37 @@ class Register:
 
 REGISTERS: tuple[Register, ...] = (
     Register("ID", 0x00, (
-        Field("id", 0, 32, "const", 0x53565057),
-    )),
+        Field("id", 0, 32, "const", 0x53565057, compact=True),
+    ), compact=True),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x1),
-        Field("major", 16, 16, "const", 0x2),
-    )),
+        Field("minor", 0, 16, "const", 0x2, compact=True),
+        Field("major", 16, 16, "const", 0x2, compact=True),
+    ), compact=True),
     Register("CONFIG", 0x08, (
-        Field("dt_width", 0, 8, "const", 0xA),
-        Field("cnt_width", 8, 8, "const", 0x10),
-        Field("freq_width", 16, 8, "const", 0x18),
-        Field("phase_width", 24, 8, "const", 0x22),
-    )),
+        Field("dt_width", 0, 8, "const", 0xA, compact=True),
+        Field("cnt_width", 8, 8, "const", 0x10, compact=True),
+        Field("freq_width", 16, 8, "const", 0x18, compact=True),
+        Field("phase_width", 24, 8, "const", 0x22, compact=True),
+    ), compact=True),
     Register("CTRL", 0x0C, (
-        Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o"),
+        Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o", compact=True),
         Field("sync_en", 1, 1, "rw", 0x0, port="ctrl_sync_en_o"),
-        Field("trip_cbc", 2, 1, "rw", 0x0, port="ctrl_trip_cbc_o"),
-        Field("safe_lo", 3, 1, "rw", 0x0, port="ctrl_safe_lo_o"),
-        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol", port="ctrl_pol_o"),
-        Field("lock", 6, 1, "w1s", 0x0, port="ctrl_lock_o"),
-        Field("fault_clear", 7, 1, "pulse", 0x0, port="ctrl_fault_clear_o"),
+        Field("trip_cbc", 2, 1, "rw", 0x0, port="ctrl_trip_cbc_o", compact=True),
+        Field("safe_lo", 3, 1, "rw", 0x0, port="ctrl_safe_lo_o", compact=True),
+        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol", port="ctrl_pol_o", compact=True),
+        Field("lock", 6, 1, "w1s", 0x0, port="ctrl_lock_o", compact=True),
+        Field("fault_clear", 7, 1, "pulse", 0x0, port="ctrl_fault_clear_o", compact=True),
         Field("mode", 8, 3, "rw", 0x0, port="ctrl_mode_o"),
         Field("upd", 12, 2, "rw", 0x0, port="ctrl_upd_o"),
         Field("dpwm", 16, 2, "rw", 0x0, port="ctrl_dpwm_o"),
         Field("adc_trig", 20, 2, "rw", 0x0, port="ctrl_adc_trig_o"),
-    )),
+    ), compact=True),
     Register("FREQ", 0x10, (
-        Field("freq", 0, 24, "rw", 0x0, signed=True, port="freq_o"),
-    )),
+        Field("freq", 0, 24, "rw", 0x0, signed=True, port="freq_o", compact=True),
+    ), compact=True),
     Register("M", 0x14, (
-        Field("m", 0, 16, "rw", 0x0, port="m_o"),
-    )),
+        Field("m", 0, 16, "rw", 0x0, port="m_o", compact=True),
+    ), compact=True),
     Register("THETA", 0x18, (
         Field("theta", 0, 16, "rw", 0x0, port="theta_o"),
     )),
@@ -127,28 +132,28 @@ REGISTERS: tuple[Register, ...] = (
         Field("vf_mmax", 0, 16, "rw", 0x0, port="vf_mmax_o"),
     )),
     Register("PERIOD", 0x30, (
-        Field("period", 0, 16, "rw", 0x600, port="period_o"),
-    )),
+        Field("period", 0, 16, "rw", 0x600, port="period_o", compact=True),
+    ), compact=True),
     Register("DT", 0x34, (
-        Field("dt", 0, 10, "rw", 0x0, port="dt_o"),
-    )),
+        Field("dt", 0, 10, "rw", 0x0, port="dt_o", compact=True),
+    ), compact=True),
     Register("MP", 0x38, (
-        Field("mp", 0, 10, "rw", 0x0, port="mp_o"),
-    )),
+        Field("mp", 0, 10, "rw", 0x0, port="mp_o", compact=True),
+    ), compact=True),
     Register("PRESC", 0x3C, (
         Field("presc", 0, 8, "rw", 0x0, port="presc_o"),
     )),
     Register("STATUS", 0x40, (
-        Field("running", 0, 1, "status", 0x0, port="status_running_i"),
-        Field("sat", 1, 1, "status", 0x0, port="status_sat_i"),
-        Field("cfg_err", 2, 1, "status", 0x0, port="status_cfg_err_i"),
-        Field("period_clamp", 3, 1, "status", 0x0, port="status_period_clamp_i"),
-        Field("freq_clamp", 4, 1, "status", 0x0, port="status_freq_clamp_i"),
-        Field("fault", 5, 1, "status", 0x0, port="status_fault_i"),
-        Field("tripped", 6, 1, "status", 0x0, port="status_tripped_i"),
-        Field("locked", 7, 1, "status", 0x0, port="status_locked_i"),
-        Field("sector", 8, 3, "status", 0x0, port="status_sector_i"),
-    )),
+        Field("running", 0, 1, "status", 0x0, port="status_running_i", compact=True),
+        Field("sat", 1, 1, "status", 0x0, port="status_sat_i", compact=True),
+        Field("cfg_err", 2, 1, "status", 0x0, port="status_cfg_err_i", compact=True),
+        Field("period_clamp", 3, 1, "status", 0x0, port="status_period_clamp_i", compact=True),
+        Field("freq_clamp", 4, 1, "status", 0x0, port="status_freq_clamp_i", compact=True),
+        Field("fault", 5, 1, "status", 0x0, port="status_fault_i", compact=True),
+        Field("tripped", 6, 1, "status", 0x0, port="status_tripped_i", compact=True),
+        Field("locked", 7, 1, "status", 0x0, port="status_locked_i", compact=True),
+        Field("sector", 8, 3, "status", 0x0, port="status_sector_i", compact=True),
+    ), compact=True),
     Register("CARRIER", 0x44, (
         Field("count", 0, 16, "status", 0x0, port="carrier_count_i"),
         Field("up", 16, 1, "status", 0x0, port="carrier_up_i"),
@@ -166,12 +171,24 @@ REGISTERS: tuple[Register, ...] = (
         Field("cmp", 0, 16, "status", 0x0, port="cmp_c_i"),
     )),
     Register("CLK_HZ", 0x58, (
-        Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz"),
-    )),
+        Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz", compact=True),
+    ), compact=True),
+    Register("FEATURES", 0x5C, (
+        Field("compact", 0, 1, "const", 0x0, rst_param="Compact", compact=True),
+    ), compact=True),
 )
 
 BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}
 BY_ADDR: dict[int, Register] = {r.addr: r for r in REGISTERS}
+
+
+def variant(compact: bool) -> tuple[Register, ...]:
+    """The registers a register block with Compact = `compact` has, each with the fields it has
+    (the full map for compact = False). What is left out reads 0 and ignores writes there."""
+    if not compact:
+        return REGISTERS
+    return tuple(replace(r, fields=tuple(f for f in r.fields if f.compact)) for r in REGISTERS if r.compact)
+
 
 ID = BY_NAME["ID"]
 VERSION = BY_NAME["VERSION"]
@@ -196,3 +213,4 @@ CMP_A = BY_NAME["CMP_A"]
 CMP_B = BY_NAME["CMP_B"]
 CMP_C = BY_NAME["CMP_C"]
 CLK_HZ = BY_NAME["CLK_HZ"]
+FEATURES = BY_NAME["FEATURES"]

@@ -27,9 +27,51 @@ def test_regmap_consistent():
     assert R.FREQ.field("freq").signed and R.FREQ.decode(0xFFFFFF)["freq"] == -1
     assert R.CTRL.encode(mode=7, en=1) == 0x701
     # CLK_HZ: appended at the next free offset (nothing moved), its value is the wrappers' ClkHz parameter
-    assert (R.CMP_C.addr, R.CLK_HZ.addr, R.VERSION.reset) == (0x54, 0x58, 0x0002_0001)
+    assert (R.CMP_C.addr, R.CLK_HZ.addr) == (0x54, 0x58)
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
+    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter
+    assert (R.FEATURES.addr, R.VERSION.reset, R.SIZE) == (0x5C, 0x0002_0002, 0x60)
+    f = R.FEATURES.field("compact")
+    assert (f.kind, f.lsb, f.width, f.reset, f.rst_param, f.compact) == ("const", 0, 1, 0, R.VARIANT_PARAM, True)
+    assert R.VARIANT_PARAM == "Compact" and R.FEATURES.mask() == 1
+
+
+# what the compact core uses (FREQ mode, continuous SVPWM, valley updates, no sync start)
+COMPACT_REGS = {"ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "MP", "STATUS", "CLK_HZ", "FEATURES"}
+COMPACT_CTRL = ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear"]
+
+
+def test_compact_variant():
+    assert {r.name for r in R.REGISTERS if r.compact} == COMPACT_REGS
+    assert [f.name for f in R.CTRL.fields if f.compact] == COMPACT_CTRL
+    for r in R.REGISTERS:
+        for f in r.fields:
+            if r.name != "CTRL":
+                assert f.compact == r.compact, f"{r.name}.{f.name}"
+            if not f.compact:        # absent: its output is a constant there, so reset 0 without a parameter
+                assert f.reset == 0 and f.rst_param is None, f"{r.name}.{f.name}"
+    assert R.variant(False) == R.REGISTERS
+    v = R.variant(True)
+    assert [r.name for r in v] == [r.name for r in R.REGISTERS if r.name in COMPACT_REGS]   # map order
+    for r in v:
+        full = R.BY_NAME[r.name]
+        assert r.addr == full.addr and r.fields == tuple(f for f in full.fields if f.compact)
+    assert {f.name for f in [r for r in v if r.name == "CTRL"][0].fields} == set(COMPACT_CTRL)
+
+
+def test_docs_show_compact():
+    """docs/registers.md has the compact column: yes / the present fields / a dash, per register."""
+    rows = {}
+    for line in (REPO / "docs/registers.md").read_text().splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if len(cells) == 6 and cells[1] in R.BY_NAME:
+            rows[cells[1]] = cells[4]
+    assert set(rows) == set(R.BY_NAME)
+    for r in R.REGISTERS:
+        present = [f.name for f in r.fields if f.compact]
+        exp = "yes" if len(present) == len(r.fields) else ", ".join(present) if present else "—"
+        assert rows[r.name] == exp, f"{r.name}: docs say {rows[r.name]!r}, regmap {exp!r}"
 
 
 def _c_checks() -> str:

@@ -27,7 +27,7 @@ from svpwm_model import regmap as R  # noqa: E402
 CPB = 8                 # clocks per bit (harness parameter)
 TIMEOUT_BITS = 40
 CLK_HZ = 100_000_000    # harness ClkHz
-PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0}      # values of the rst_param fields in this system
+PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": 0}      # values of the rst_param fields in this system
 RW_REGS = [r for r in R.REGISTERS if r.mask("rw")]
 LIVE = [r for r in R.REGISTERS if r.mask("status")]
 
@@ -170,7 +170,7 @@ async def id_and_reset_values(dut):
     registers read the idle core; unmapped addresses read 0; RO and unmapped addresses ignore writes."""
     u = await setup(dut)
     assert await u.read(R.ID) == 0x5356_5057
-    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0001
+    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0002
     assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": 16, "freq_width": 24,
                                                         "phase_width": 34}
     assert await u.read(R.CLK_HZ) == CLK_HZ
@@ -180,7 +180,7 @@ async def id_and_reset_values(dut):
     exp.update(STATUS=0, CARRIER=R.CARRIER.encode(count=0, up=1),
                PERIOD_ACT=fixed.clamp_period(R.PERIOD.reset, R.DT.reset, R.MP.reset)[0], CMP_A=0, CMP_B=0, CMP_C=0)
     assert got == exp, {k: (hex(got[k]), hex(exp[k])) for k in got if got[k] != exp[k]}
-    for a in (0x5C, 0x80, 0xFC):
+    for a in (R.SIZE, 0x80, 0xFC):
         assert await u.read(a) == 0, f"unmapped 0x{a:02x}"
     assert await u.read(R.CLK_HZ.addr + 1) == CLK_HZ          # addr[1:0] are ignored (byte offset in a word)
     for r in [r for r in R.REGISTERS if not r.mask("rw", "w1s", "pulse")] + [0x80]:

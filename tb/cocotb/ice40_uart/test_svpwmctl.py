@@ -29,11 +29,14 @@ class FakeBoard:
     """The board as svpwmctl sees it: uart_reg_bridge's frames (incl. NAK) and svpwm_regs' register
     semantics (RW masks, RO ignored, w1s sticky, pulse reads 0, unmapped reads 0), from regmap.py.
     A pyserial-like port: write(bytes) / read(n). `status` is what the core drives into STATUS; a
-    CTRL.fault_clear pulse clears its tripped bit unless the fault bit is set (the core's latch)."""
+    CTRL.fault_clear pulse clears its tripped bit unless the fault bit is set (the core's latch).
+    compact: the compact variant (R.variant(True): absent registers and fields read 0, ignore writes)."""
 
-    def __init__(self, clk_hz=48_000_000, answer=True, version=None):
-        self.regs = {r.addr: r.reset for r in R.REGISTERS}
+    def __init__(self, clk_hz=48_000_000, answer=True, version=None, compact=False):
+        self.map = {r.addr: r for r in R.variant(compact)}
+        self.regs = {r.addr: r.reset for r in self.map.values()}
         self.regs[R.CLK_HZ.addr] = clk_hz
+        self.regs[R.FEATURES.addr] = R.FEATURES.encode(compact=int(compact))
         if version is not None:
             self.regs[R.VERSION.addr] = version
         self.status = 0
@@ -44,12 +47,12 @@ class FakeBoard:
         self._out = b""
 
     def value(self, reg: R.Register) -> int:
-        return self.status if reg is R.STATUS else self.regs[reg.addr]
+        return self.status if reg.name == "STATUS" else self.regs[reg.addr]
 
     def _frame(self, f: bytes) -> bytes:
         if sum(f) & 0xFF:
             return bytes([ctl.RSP_NAK])
-        addr, reg = f[1], R.BY_ADDR.get(f[1] & 0xFC)
+        addr, reg = f[1], self.map.get(f[1] & 0xFC)
         if f[0] == ctl.CMD_WRITE:
             v = int.from_bytes(f[2:6], "little")
             self.writes.append((addr, v))
@@ -57,7 +60,7 @@ class FakeBoard:
                 old = self.regs[reg.addr]
                 self.regs[reg.addr] = (old & ~reg.mask("rw")) | (v & reg.mask("rw")) | (old & reg.mask("w1s")) \
                     | (v & reg.mask("w1s"))
-                if reg is R.CTRL and R.CTRL.decode(v)["fault_clear"] and not R.STATUS.decode(self.status)["fault"]:
+                if reg.name == "CTRL" and R.CTRL.decode(v)["fault_clear"] and not R.STATUS.decode(self.status)["fault"]:
                     self.status &= ~R.STATUS.field("tripped").mask
             return bytes([ctl.RSP_ACK])
         self.reads.append(addr)
@@ -184,7 +187,8 @@ def test_status_and_reads():
     assert cmd(fb, "read", "status.sector") == "4"
     assert cmd(fb, "read", "0x80") == "0x00000000"
     assert cmd(fb, "read", "CLK_HZ") == "0x02dc6c00  clk_hz=48000000"
-    assert cmd(fb, "info").startswith("ID 0x53565057 (svpwm), register map 2.1, clock 48000000 Hz")
+    assert cmd(fb, "info").startswith("ID 0x53565057 (svpwm), register map 2.2, clock 48000000 Hz")
+    assert cmd(fb, "info").endswith("DtWidth 10, full variant") and st["variant"] == "full"
     dump = cmd(fb, "dump").splitlines()
     assert [line.split()[1] for line in dump] == [r.name for r in R.REGISTERS]
     cmd(fb, "write", "CTRL.mode", "7")
@@ -254,6 +258,52 @@ def test_locked_and_period_rules():
     assert len(fb.writes) == n
     cmd(fb, "start")
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1)
+
+
+def test_compact_board():
+    """A compact board (FEATURES.compact = 1): the registers and fields it has work as on the full
+    board; writes to the others are refused with nothing written; info / status / dump say so."""
+    fb = FakeBoard(compact=True)
+    info = cmd(fb, "info")
+    assert info.startswith("ID 0x53565057 (svpwm), register map 2.2, clock 48000000 Hz")
+    assert info.endswith("compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start "
+                         "(FEATURES.compact)"), info
+    cmd(fb, "set-dt", "0.5")
+    cmd(fb, "set-mp", "0.25")
+    cmd(fb, "set-period", "--fsw", "20000")
+    cmd(fb, "set-freq", "50")
+    cmd(fb, "set-m", "0.9")
+    cmd(fb, "write", "CTRL.pol", "2")
+    cmd(fb, "start")
+    assert [fb.regs[r.addr] for r in (R.DT, R.MP, R.PERIOD, R.FREQ, R.M, R.CTRL)] == \
+        [24, 12, 1200, 107374, 0x7333, R.CTRL.encode(en=1, pol=2)]
+    cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
+    assert fb.regs[R.CTRL.addr] == 0x35
+    cmd(fb, "write", "0x80", "1")                      # unmapped in both variants: as before
+    st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
+    assert st["variant"] == "compact" and st["mode"] == "freq" and st["period_act_clocks"] == "-"
+    assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]
+    absent = [r for r in R.REGISTERS if not r.compact]
+    assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
+                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C"}
+    refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"],
+               ["write", "CTRL.mode", "0"], ["write", "CTRL.sync_en", "1"], ["write", "ctrl.adc_trig", "1"],
+               ["write", "CTRL", "0x101"], ["write", "CTRL", "0x2"], ["write", "CTRL", "-1"]]
+    refused += [["write", r.name, "0"] for r in absent] + [["write", f"0x{r.addr:x}", "1"] for r in absent]
+    refused += [["write", f"{r.name}.{f.name}", "1"] for r in absent for f in r.fields if f.writable]
+    before = dict(fb.regs)
+    fb.writes.clear()
+    for argv in refused:
+        with pytest.raises(ValueError, match="not on this board \\(compact variant"):
+            cmd(fb, *argv)
+    assert fb.writes == [] and fb.regs == before
+    with pytest.raises(ValueError, match=r"CTRL.mode, CTRL.dpwm: not on this board"):
+        cmd(fb, "write", "CTRL", hex(R.CTRL.encode(mode=1, dpwm=1, en=1)))
+    # the same commands on a full board (and on a 2.1 board without FEATURES) are accepted
+    for fb in (FakeBoard(), FakeBoard(version=0x0002_0001)):
+        for argv in refused:
+            cmd(fb, *argv)
+        assert fb.regs[R.THETA.addr] == 1 and not fb.regs[R.FEATURES.addr]
 
 
 def test_no_answer():

@@ -3,8 +3,10 @@
 
 Harness tb_svpwm_bus_regs.sv: the register outputs are probed in u_regs, the status inputs are driven
 from here. Every address, field, reset value and access kind comes from svpwm_model.regmap (generated
-from rdl/svpwm.rdl); nothing is typed twice. cocotb tests have no `test_` prefix (pytest does not
-collect them).
+from rdl/svpwm.rdl); nothing is typed twice. The compact variant (Compact = 1) is checked against
+R.variant(True): its registers and fields behave as in the full block, every other register and field
+reads 0, ignores writes and keeps its output at 0; FEATURES.compact reads the parameter. cocotb tests
+have no `test_` prefix (pytest does not collect them).
 """
 from __future__ import annotations
 
@@ -21,7 +23,7 @@ from svpwm_model import regmap as R
 HERE = Path(__file__).resolve().parent
 ADDR_WIDTH = 8
 # ClkHz per bus variant (CLK_HZ reads it): 0 (not stated), a typical clock, the largest value
-CLK_HZ = {"axil": 48_000_000, "wb": 0, "wbc": 0x7FFF_FFFF}
+CLK_HZ = {"axil": 48_000_000, "wb": 0, "wbc": 0x7FFF_FFFF, "wb_compact": 24_000_000}
 CLK_NS = 10
 # harness status input bit -> STATUS field, in the harness's packing order
 STATUS_BITS = ["running", "sat", "cfg_err", "period_clamp", "freq_clamp", "fault", "tripped", "locked"]
@@ -34,7 +36,14 @@ class TB:
         self.dut = dut
         self.bus = None
         # wrapper parameters that give field values (rst_param), as passed to the harness
-        self.params = {"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"])}
+        self.params = {"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"]),
+                       "Compact": int(os.environ["SVPWM_COMPACT"])}
+        self.compact = bool(self.params["Compact"])
+        self.map = R.variant(self.compact)               # the registers / fields this variant has
+        self.by_addr = {r.addr: r for r in self.map}
+        present = {(r.name, f.name) for r in self.map for f in r.fields}
+        self.absent = [(r, f) for r in R.REGISTERS for f in r.fields          # outputs without storage
+                       if f.kind in ("rw", "w1s", "pulse") and (r.name, f.name) not in present]
         self.rng = random.Random(int(os.environ.get("SVPWM_SEED", "1")))
 
     async def reset(self, status=0, carrier=0, period_act=0, cmp=0):
@@ -63,15 +72,19 @@ class TB:
         return sum((self.reset_of(f) << f.lsb) for f in reg.fields if f.kind in ("const", "rw", "w1s"))
 
     async def snapshot(self) -> dict[str, int]:
-        return {r.name: await self.bus.read(r.addr) for r in R.REGISTERS}
+        return {r.name: await self.bus.read(r.addr) for r in self.map}
 
+    def rw_regs(self) -> list[R.Register]:
+        return [r for r in self.map if r.mask("rw")]
 
-def rw_regs():
-    return [r for r in R.REGISTERS if r.mask("rw")]
+    def reserved_addrs(self) -> list[int]:
+        """Addresses without a register in this variant (incl. the full map's others if compact)."""
+        return [a for a in range(0, 1 << ADDR_WIDTH, 4) if a not in self.by_addr]
 
-
-def reserved_addrs():
-    return [a for a in range(0, 1 << ADDR_WIDTH, 4) if a not in R.BY_ADDR]
+    def check_absent_ports(self, when: str) -> None:
+        """Outputs of the fields this variant does not have stay at 0."""
+        for r, f in self.absent:
+            assert self.port(f) == 0, f"{r.name}.{f.name} (absent): port {f.port} = 0x{self.port(f):X} {when}"
 
 
 # --------------------------------------------------------------------------- cocotb tests
@@ -80,15 +93,17 @@ async def reset_values(dut):
     """Every register reads its reset value; every register output starts at its field's reset."""
     tb = TB(dut)
     await tb.reset()
-    for r in R.REGISTERS:
+    for r in tb.map:
         got = await tb.bus.read(r.addr)
         assert got == tb.expected_reset(r), f"{r.name}: reset read 0x{got:08X} != 0x{tb.expected_reset(r):08X}"
         for f in r.fields:
             if f.kind in ("rw", "w1s", "pulse"):
                 exp = 0 if f.kind == "pulse" else tb.reset_of(f)
                 assert tb.port(f) == exp, f"{r.name}.{f.name}: port {f.port} = {tb.port(f)} after reset != {exp}"
+    tb.check_absent_ports("after reset")
     assert R.ID.reset == 0x53565057 and await tb.bus.read(R.ID.addr) == 0x53565057
-    assert await tb.bus.read(R.CLK_HZ.addr) == CLK_HZ[tb.bus.name], "CLK_HZ is not the ClkHz parameter"
+    assert await tb.bus.read(R.CLK_HZ.addr) == int(os.environ["SVPWM_CLKHZ"]), "CLK_HZ is not the ClkHz parameter"
+    assert await tb.bus.read(R.FEATURES.addr) == R.FEATURES.encode(compact=int(tb.compact)), "FEATURES.compact"
 
 
 @cocotb.test()
@@ -97,7 +112,7 @@ async def readback_walking(dut):
     its width, and drives its register output; other fields of the register keep their values."""
     tb = TB(dut)
     await tb.reset()
-    for r in rw_regs():
+    for r in tb.rw_regs():
         keep = r.mask("w1s", "pulse")          # written separately (lock_fault_clear)
         for p in PATTERNS + [tb.rng.getrandbits(32) for _ in range(8)]:
             p &= ~keep
@@ -108,27 +123,38 @@ async def readback_walking(dut):
             for f in r.fields:
                 if f.kind == "rw":
                     assert tb.port(f) == (p & f.mask) >> f.lsb, f"{r.name}.{f.name}: port {f.port} = 0x{tb.port(f):X}"
+            tb.check_absent_ports(f"after {r.name} = 0x{p:08X}")     # compact: CTRL's absent fields
         await tb.bus.write(r.addr, tb.expected_reset(r))
 
 
 @cocotb.test()
 async def ro_and_reserved_ignore_writes(dut):
-    """RO registers ignore writes; reserved addresses read 0 and ignore writes (no register changes,
-    no aliasing)."""
+    """RO registers ignore writes; reserved addresses (compact: also the registers it does not have,
+    whatever their live inputs) read 0 and ignore writes (no register changes, no aliasing, the
+    outputs of absent fields stay 0)."""
     tb = TB(dut)
     await tb.reset(status=0x5A5, carrier=0x1_2345, period_act=0x0600, cmp=0x0300_0200_0100)
-    for r in rw_regs():                                          # a known non-reset state
+    for r in tb.rw_regs():                                       # a known non-reset state
         await tb.bus.write(r.addr, 0x0F0F0F0F & r.mask("rw"))
     before = await tb.snapshot()
-    for r in [r for r in R.REGISTERS if not r.mask("rw", "w1s", "pulse")]:
+    for r in [r for r in tb.map if not r.mask("rw", "w1s", "pulse")]:
         for v in (0xFFFFFFFF, 0, ~before[r.name] & 0xFFFFFFFF):
             await tb.bus.write(r.addr, v)
             got = await tb.bus.read(r.addr)
             assert got == before[r.name], f"RO {r.name} changed by a write of 0x{v:08X}: 0x{got:08X}"
-    for a in reserved_addrs():
+    for a in tb.reserved_addrs():
         assert await tb.bus.read(a) == 0, f"reserved 0x{a:02X} reads non-zero"
-        await tb.bus.write(a, 0xFFFFFFFF)
-        assert await tb.bus.read(a) == 0, f"reserved 0x{a:02X} reads non-zero after a write"
+        for v in (0xFFFFFFFF, 0x5A5A5A5A):
+            await tb.bus.write(a, v)
+            assert await tb.bus.read(a) == 0, f"reserved 0x{a:02X} reads non-zero after a write of 0x{v:08X}"
+        tb.check_absent_ports(f"after a write to 0x{a:02X}")
+    for r in tb.rw_regs():                          # compact: absent fields of present registers
+        absent = r.mask() ^ R.BY_NAME[r.name].mask()
+        if absent:
+            await tb.bus.write(r.addr, absent | before[r.name])
+            got = await tb.bus.read(r.addr)
+            assert got == before[r.name], f"{r.name}: absent bits 0x{absent:08X} written, read 0x{got:08X}"
+            tb.check_absent_ports(f"after writing the absent bits of {r.name}")
     after = await tb.snapshot()
     assert after == before, f"writes to RO / reserved addresses changed {[k for k in before if before[k] != after[k]]}"
 
@@ -146,6 +172,14 @@ async def status_inputs(dut):
     for s in range(8):
         d.status.value = s << 8
         assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["sector"] == s
+    live = [R.CARRIER, R.PERIOD_ACT, R.CMP_A, R.CMP_B, R.CMP_C]
+    if tb.compact:                  # not in the compact variant: 0 whatever the core drives
+        assert not any(r.addr in tb.by_addr for r in live)
+        for v in (-1, 0x5555_5555_5555, 0xAAAA_AAAA_AAAA):
+            d.carrier.value, d.period_act.value, d.cmp.value = v & 0x1FFFF, v & 0xFFFF, v & (2**48 - 1)
+            vals = [await tb.bus.read(r.addr) for r in live]
+            assert vals == [0] * len(live), f"absent live registers read {vals}"
+        return
     for i in range(17):
         d.carrier.value = 1 << i
         got = R.CARRIER.decode(await tb.bus.read(R.CARRIER.addr))
@@ -165,7 +199,7 @@ async def byte_lanes(dut):
     tb = TB(dut)
     await tb.reset()
     strobes = range(1, 16) if tb.bus.name != "axil" else [1, 2, 4, 8, 3, 6, 12, 7, 14, 5, 9, 10, 13, 11]
-    for r in rw_regs():
+    for r in tb.rw_regs():
         m = r.mask("rw")
         for strb in strobes:
             a, b = tb.rng.getrandbits(32) & m, tb.rng.getrandbits(32) & m
@@ -184,8 +218,8 @@ async def back_to_back(dut):
     mixed and in order), checked against a reference of the register contents."""
     tb = TB(dut)
     await tb.reset()
-    ref = {r.addr: tb.expected_reset(r) for r in R.REGISTERS}
-    regs = rw_regs()
+    ref = {r.addr: tb.expected_reset(r) for r in tb.map}
+    regs = tb.rw_regs()
     for rnd in range(4):
         ops = []
         for _ in range(40):
@@ -196,14 +230,14 @@ async def back_to_back(dut):
         await tb.bus.write_many(ops)
         t_wr = (get_sim_time("ns") - t0) / CLK_NS
         for a, v in ops:
-            ref[a] = v | (ref[a] & ~R.BY_ADDR[a].mask("rw"))
-        addrs = [r.addr for r in R.REGISTERS] + reserved_addrs()[:4]
+            ref[a] = v | (ref[a] & ~tb.by_addr[a].mask("rw"))
+        addrs = [r.addr for r in tb.map] + tb.reserved_addrs()[:4]
         tb.rng.shuffle(addrs)
         t0 = get_sim_time("ns")
         got = await tb.bus.read_many(addrs)
         t_rd = (get_sim_time("ns") - t0) / CLK_NS
         for a, g in zip(addrs, got):
-            if R.BY_ADDR.get(a) is not None and R.BY_ADDR[a].mask("status"):
+            if tb.by_addr.get(a) is not None and tb.by_addr[a].mask("status"):
                 continue
             assert g == ref.get(a, 0), f"round {rnd}: 0x{a:02X} read 0x{g:08X} != 0x{ref.get(a, 0):08X}"
         dut._log.info(f"{tb.bus.name}: {len(ops)} writes in {t_wr:.0f} clocks, {len(addrs)} reads in {t_rd:.0f}")
@@ -280,15 +314,17 @@ async def lock_fault_clear(dut):
 import pytest  # noqa: E402
 
 
-@pytest.mark.parametrize("bus", ["axil", "wb", "wbc"])
-def test_svpwm_bus_regs(sim, bus):
+@pytest.mark.parametrize("bus, compact", [("axil", 0), ("wb", 0), ("wbc", 0), ("wb", 1)])
+def test_svpwm_bus_regs(sim, bus, compact):
     from simrun import REPO, run_sim
 
-    gate_pol = {"axil": 0, "wb": 2, "wbc": 1}[bus]     # a non-zero GatePol reset too
+    name = bus + ("_compact" if compact else "")
+    gate_pol = {"axil": 0, "wb": 2, "wbc": 1, "wb_compact": 1}[name]     # a non-zero GatePol reset too
     run_sim(sim, toplevel="tb_svpwm_bus_regs",
             sources=[REPO / "rtl/svpwm_regs.sv", REPO / "rtl/svpwm_axil_if.sv", REPO / "rtl/svpwm_wb_if.sv",
                      HERE / "tb_svpwm_bus_regs.sv"],
             test_module="test_svpwm_bus_regs", test_dir=HERE,
             parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "AddrWidth": ADDR_WIDTH, "GatePol": gate_pol,
-                        "ClkHz": CLK_HZ[bus]},
-            build_name=bus, extra_env={"SVPWM_BUS": bus, "SVPWM_GATEPOL": gate_pol, "SVPWM_CLKHZ": CLK_HZ[bus]})
+                        "ClkHz": CLK_HZ[name], "Compact": compact},
+            build_name=name, extra_env={"SVPWM_BUS": bus, "SVPWM_GATEPOL": gate_pol, "SVPWM_CLKHZ": CLK_HZ[name],
+                                        "SVPWM_COMPACT": compact})

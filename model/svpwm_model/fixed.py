@@ -37,6 +37,7 @@ M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
 DUTY_LATENCY = 34         # clocks from the duty calculator's start strobe to its done strobe
 MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
+LITE_DUTY_LATENCY = 113  # clocks start -> done of rtl/svpwm_duty_lite.sv (compact core)
 SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (39)
 V_FRAC = 14               # v_alpha, v_beta, v_d, v_q are signed Q2.14
 V_ONE = 1 << V_FRAC

@@ -74,7 +74,8 @@ lint: $(STAMP)
 	@for f in $(LINT_SRCS) $(LINT_WAIVER); do \
 	  test -f "$$f" || { echo "ERROR: lint input $$f not found" >&2; exit 1; }; done
 	verilator $(LINT_FLAGS) --top-module $(LINT_TOP) $(LINT_WAIVER) $(LINT_SRCS)
-	@echo "lint: clean"
+	verilator $(LINT_FLAGS) --top-module svpwm_core -GCompact=1 $(LINT_WAIVER) $(LINT_SRCS)
+	@echo "lint: clean (svpwm_core full and Compact = 1)"
 
 model-test: $(STAMP)
 	@test -d model/tests || { echo "ERROR: model/tests not found" >&2; exit 1; }

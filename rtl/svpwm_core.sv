@@ -5,11 +5,17 @@
 // Every carrier period follows Minas Table I / AVR495 Table 4-3: symmetric seven segments, V0 split
 // at the start and end, V7 in the middle, one leg switching per transition.
 // Parameters:
+//   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
+//                continuous SVPWM, valley updates; mode_i, theta_i, v1_i, v2_i, vf_*_i, dpwm_i, upd_i,
+//                presc_i, sync_en_i and sync_i are ignored. One serial calculator (rtl/svpwm_duty_lite.sv:
+//                duty + hexagon clamp + minimum pulse, the same arithmetic) replaces svpwm_duty and
+//                svpwm_minpulse; SampleLead = LiteDutyLatency + 1 (model fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
-//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4)
+//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4;
+//                default 48, Compact: SampleLead + 4)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
@@ -34,11 +40,12 @@
 `default_nettype none
 
 module svpwm_core #(
+  parameter bit Compact    = 1'b0,
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 48,
+  parameter int MinPeriod  = Compact ? 118 : 48,
   parameter int FreqMax    = (1 << (FreqWidth - 1)) - 1,
   parameter logic [1:0] GatePol = 2'b00
 ) (
@@ -94,11 +101,13 @@ module svpwm_core #(
 );
 
   // clocks from an input sample (inputs taken in the clock before) to the update point
+  localparam int LiteDutyLatency = 113;  // rtl/svpwm_duty_lite.sv Latency (model fixed.LITE_DUTY_LATENCY)
 `ifdef FORMAL
   localparam int SampleLead     = 2;    // formal/core.sby cuts the compute pipeline: no latency to cover
   localparam int MinPeriodFloor = 4;
 `else
-  localparam int SampleLead     = 39;   // duty calculator 34 + minimum pulse 4 + load 1
+  localparam int SampleLead     = Compact ? LiteDutyLatency + 1   // serial calculator + load 1
+                                          : 39;                    // duty calculator 34 + minimum pulse 4 + load 1
   localparam int MinPeriodFloor = SampleLead + 4;
 `endif
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
@@ -130,7 +139,16 @@ module svpwm_core #(
     end
   end
 
-  assign run = en_i && armed_q[2] && (started_q || !sync_en_i || sync_i);
+  // the compact variant has no sync start, no update modes, no prescaler (the inputs are ignored)
+  logic       sync_en;
+  logic [1:0] upd_in;
+  logic [7:0] presc_in;
+
+  assign sync_en  = Compact ? 1'b0 : sync_en_i;
+  assign upd_in   = Compact ? 2'd0 : upd_i;
+  assign presc_in = Compact ? 8'd0 : presc_i;
+
+  assign run = en_i && armed_q[2] && (started_q || !sync_en || sync_i);
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -269,9 +287,9 @@ module svpwm_core #(
     cnt_d     = cnt_q;
     if (opp_v || opp_p) cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
     if (!run || vps) begin                 // update mode and prescaler: before each valley (or idle)
-      upd_d     = (upd_i == 2'd3) ? UpdValley : upd_i;
-      upd_err_d = upd_i == 2'd3;
-      presc_d   = presc_i;
+      upd_d     = (upd_in == 2'd3) ? UpdValley : upd_in;
+      upd_err_d = upd_in == 2'd3;
+      presc_d   = presc_in;
     end
     if (!run) cnt_d = '0;
   end
@@ -333,38 +351,9 @@ module svpwm_core #(
   // ---- duty calculator: started in the clock after the sample (event_q) --------------------------
   logic                  start_q, ev_valley_q, pending_d, pending_q;
   logic [2:0]            duty_sector;
-  logic [3*CntWidth-1:0] duty_cmp;
-  logic                  duty_done, duty_busy, duty_sat, duty_err;
+  logic                  duty_busy, duty_sat, duty_err;
   logic [CntWidth-1:0]   calc_period_d, calc_period_q;
   logic [DtWidth:0]      calc_thr_d, calc_thr_q;
-
-  svpwm_duty #(.CntWidth(CntWidth)) u_duty (
-    .clk_i      (clk_i),
-    .rst_ni     (rst_ni),
-    .start_i    (start_q && run),
-    .abort_i    (!run),
-    .mode_i     (mode_q),
-    .sector_i   (acc_sector),
-    .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held
-                                                                    // at 0 otherwise so simulators do not
-                                                                    // re-evaluate the calculator every clock
-    .theta_i    (theta_q),
-    .m_i        (m_q),
-    .fabs_i     (fabs),
-    .v1_i       (v1_q),
-    .v2_i       (v2_q),
-    .vf_boost_i (vf_boost_q),
-    .vf_slope_i (vf_slope_q),
-    .vf_mmax_i  (vf_mmax_q),
-    .dpwm_i     (dpwm_q),
-    .period_i   (calc_period_d),
-    .busy_o     (duty_busy),
-    .done_o     (duty_done),
-    .sector_o   (duty_sector),
-    .cmp_o      (duty_cmp),
-    .sat_o      (duty_sat),
-    .err_o      (duty_err)
-  );
 
   // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
   // dead time it comes with; a peak update for the active period and dead time
@@ -377,20 +366,77 @@ module svpwm_core #(
     end
   end
 
-  // ---- minimum pulse -----------------------------------------------------------------------------
+  // ---- minimum pulse (after the duty calculator, or inside the compact variant's serial calculator) --
   logic [3*CntWidth-1:0] snap_cmp;
   logic                  snap_done;
 
-  svpwm_minpulse #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_minpulse (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .start_i  (duty_done),
-    .cmp_i    (duty_cmp),
-    .period_i (calc_period_q),
-    .thr_i    (calc_thr_q),
-    .done_o   (snap_done),
-    .cmp_o    (snap_cmp)
-  );
+  if (Compact) begin : gen_lite
+    // one serial datapath: duty, hexagon clamp and minimum pulse in LiteDutyLatency clocks
+    svpwm_duty_lite #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_duty (
+      .clk_i    (clk_i),
+      .rst_ni   (rst_ni),
+      .start_i  (start_q && run),
+      .abort_i  (!run),
+      .sector_i (acc_sector),
+      .angle_i  (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),
+      .m_i      (m_q),
+      .period_i (calc_period_d),
+      .thr_i    (calc_thr_d),
+      .busy_o   (duty_busy),
+      .done_o   (snap_done),
+      .sector_o (duty_sector),
+      .cmp_o    (snap_cmp),
+      .sat_o    (duty_sat)
+    );
+    assign duty_err = 1'b0;
+
+    // inputs of the modes the compact variant does not have (removed by synthesis)
+    logic unused_full;
+    assign unused_full = ^{mode_q, theta_q, v1_q, v2_q, vf_boost_q, vf_slope_q, vf_mmax_q, dpwm_q, fabs,
+                           calc_period_q, calc_thr_q, sync_en_i, upd_i, presc_i};
+  end else begin : gen_full
+    logic [3*CntWidth-1:0] duty_cmp;
+    logic                  duty_done;
+
+    svpwm_duty #(.CntWidth(CntWidth)) u_duty (
+      .clk_i      (clk_i),
+      .rst_ni     (rst_ni),
+      .start_i    (start_q && run),
+      .abort_i    (!run),
+      .mode_i     (mode_q),
+      .sector_i   (acc_sector),
+      .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held
+                                                                      // at 0 otherwise so simulators do not
+                                                                      // re-evaluate the calculator every clock
+      .theta_i    (theta_q),
+      .m_i        (m_q),
+      .fabs_i     (fabs),
+      .v1_i       (v1_q),
+      .v2_i       (v2_q),
+      .vf_boost_i (vf_boost_q),
+      .vf_slope_i (vf_slope_q),
+      .vf_mmax_i  (vf_mmax_q),
+      .dpwm_i     (dpwm_q),
+      .period_i   (calc_period_d),
+      .busy_o     (duty_busy),
+      .done_o     (duty_done),
+      .sector_o   (duty_sector),
+      .cmp_o      (duty_cmp),
+      .sat_o      (duty_sat),
+      .err_o      (duty_err)
+    );
+
+    svpwm_minpulse #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_minpulse (
+      .clk_i    (clk_i),
+      .rst_ni   (rst_ni),
+      .start_i  (duty_done),
+      .cmp_i    (duty_cmp),
+      .period_i (calc_period_q),
+      .thr_i    (calc_thr_q),
+      .done_o   (snap_done),
+      .cmp_o    (snap_cmp)
+    );
+  end
 
   // ---- shadow and active registers ---------------------------------------------------------------
   logic [3*CntWidth-1:0] cmp_d, cmp_q;

@@ -23,7 +23,7 @@ Timeline (see README "Timing"):
 from __future__ import annotations
 
 import bisect
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Sequence
 
 from . import fixed
@@ -100,6 +100,11 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
     return out
 
 
+def _compact(u: Inputs) -> Inputs:
+    """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler."""
+    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0)
+
+
 def _upd_code(upd: int) -> int:
     """upd_i as the core decodes it: 3 (invalid) counts as VALLEY (and raises cfg_err_o)."""
     return fixed.UPD_VALLEY if upd == 3 else upd
@@ -108,8 +113,17 @@ def _upd_code(upd: int) -> int:
 class CoreModel:
     """The golden model. State carried between runs: the angle and the dead-time FSMs."""
 
-    def __init__(self, sector: int = 0, angle: int = 0):
+    def __init__(self, sector: int = 0, angle: int = 0, compact: bool = False,
+                 min_period: int | None = None):
+        """``compact``: the core built with Compact = 1 (FREQ mode, SVPWM, valley updates; mode, dpwm, upd
+        and presc are ignored, the lead is LITE_SAMPLE_LEAD). ``min_period``: the core's MinPeriod
+        parameter (default: the default of the variant)."""
         self.theta = (sector << fixed.PHASE_WIDTH) + angle      # full angle, units 60deg / 2^PHASE_WIDTH
+        self.compact = compact
+        self.lead = fixed.LITE_SAMPLE_LEAD if compact else fixed.SAMPLE_LEAD
+        if min_period is None:
+            min_period = fixed.LITE_MIN_PERIOD if compact else fixed.MIN_PERIOD
+        self.min_period = min_period
         self.legs = [LegState(0, 0, 0) for _ in range(3)]     # reset: off, dead time counts from release
 
     def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
@@ -126,10 +140,15 @@ class CoreModel:
             pget = get
         else:
             pget = peak_inputs if callable(peak_inputs) else (lambda n: peak_inputs[n])
+        if self.compact:                    # the compact core ignores these inputs
+            get0, pget0 = get, pget
+            get = lambda n: _compact(get0(n))           # noqa: E731
+            pget = lambda n: _compact(pget0(n))         # noqa: E731
+            idle = _compact(idle)
         full = 6 << fixed.PHASE_WIDTH
-        lead = fixed.SAMPLE_LEAD
+        lead, min_period = self.lead, self.min_period
         r = Run()
-        p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp)
+        p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp, min_period)
         dt_cur, mp_cur = idle.dt, idle.mp
         f_cur, _ = fixed.clamp_freq(idle.freq)
         upd, presc, cnt = _upd_code(idle.upd), idle.presc, 0
@@ -200,7 +219,7 @@ class CoreModel:
                 break
             # ---- valley opportunity ----
             u = get(n)
-            p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp)
+            p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp, min_period)
             forced = (p_next, u.dt, u.mp) != (p_cur, dt_cur, mp_cur)
             opp = upd in (fixed.UPD_VALLEY, fixed.UPD_BOTH)
             ev = (opp and cnt == 0) or forced

@@ -39,6 +39,10 @@ DUTY_LATENCY = 34         # clocks from the duty calculator's start strobe to it
 MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
 LITE_DUTY_LATENCY = 113  # clocks start -> done of rtl/svpwm_duty_lite.sv (compact core)
 SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (39)
+# compact core (svpwm_core Compact = 1, the iCEstick's HX1K): FREQ mode, SVPWM, valley updates only; one serial
+# calculator (duty + minimum pulse) -- the same arithmetic, a longer lead, and a longer shortest period
+LITE_SAMPLE_LEAD = LITE_DUTY_LATENCY + 1
+LITE_MIN_PERIOD = LITE_SAMPLE_LEAD + 4   # svpwm_core MinPeriod default with Compact = 1
 V_FRAC = 14               # v_alpha, v_beta, v_d, v_q are signed Q2.14
 V_ONE = 1 << V_FRAC
 D_ONE = 1 << SIN_BITS     # dwell time of a whole period
@@ -80,13 +84,13 @@ _ROM = sine_table()
 FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)
 
 
-def clamp_period(p: int, dt: int = 0, mp: int = 0) -> tuple[int, bool]:
-    """Clamp a half period to [max(MIN_PERIOD, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped).
+def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int = MIN_PERIOD) -> tuple[int, bool]:
+    """Clamp a half period to [max(min_period, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped).
 
     A period too short for the dead time plus the minimum pulse is lengthened, never the dead time
     shortened: the dead time is a safety setting."""
     top = (1 << CNT_WIDTH) - 1
-    low = max(MIN_PERIOD, 2 * (dt + mp))
+    low = max(min_period, 2 * (dt + mp))
     if p < low:
         return low, True
     if p > top:

@@ -8,6 +8,7 @@ model's time base (cycle 0 = first clock with en_i = 1) for comparison with svpw
 from __future__ import annotations
 
 import bisect
+import os
 from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
@@ -47,7 +48,8 @@ def _diff(name: str, got: list, exp: list) -> str:
 class CoreTB:
     def __init__(self, dut):
         self.dut = dut
-        self.model = CoreModel()
+        self.compact = os.environ.get("SVPWM_COMPACT") == "1"    # harness built with Compact = 1
+        self.model = CoreModel(compact=self.compact)
         self.cmp_width = len(dut.period_o)
 
     def set_inputs(self, u: Inputs) -> None:
@@ -89,7 +91,7 @@ class CoreTB:
         await ClockCycles(d.clk, 3)
         d.rst_ni.value = 1
         await ClockCycles(d.clk, 3)   # the core runs 3 clocks after the reset release at the earliest
-        self.model = CoreModel()
+        self.model = CoreModel(compact=self.compact)
         self.idle_cycles = 4          # clocks from reset release to cycle 0 of run() (en_i low)
 
     def _cycle(self) -> int:

@@ -8,6 +8,7 @@
 `default_nettype none
 
 module tb_svpwm_core #(
+  parameter bit Compact    = 1'b0,
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
@@ -76,6 +77,7 @@ module tb_svpwm_core #(
   always #5 clk = ~clk;
 
   svpwm_core #(
+    .Compact    (Compact),
     .CntWidth   (CntWidth),
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),

@@ -6,6 +6,10 @@ frequency is zero): Minas Fig. 9 and 10 (5.1 Hz and 50 Hz at f_sw = 15.625 kHz),
 0.5 and 1, negative and zero frequency, a reversal through zero, a period and a dead-time change while
 running, and a disable mid-period. Besides bit-exactness: Table I sequences, leg safety from the edges,
 an in-RTL per-clock safety checker, and the duty error against the floating-point ideal.
+
+Two builds: the full core and the compact variant (Compact = 1, the iCEstick's HX1K: FREQ mode, SVPWM,
+valley updates, one serial calculator with a longer lead). Both run every test against the golden model
+(CoreModel(compact=...)); `full_only_inputs` checks that the compact core ignores what it does not have.
 """
 from __future__ import annotations
 
@@ -137,7 +141,7 @@ async def clamps_and_disable(dut):
     await tb.reset(u)
     rtl, exp = await check_run(tb, u, const(u), 30, stop=17)
     assert int(dut.sat_o.value) == 1 and int(dut.period_clamp_o.value) == 1
-    assert all(p == fixed.MIN_PERIOD for p in rtl.period)
+    assert all(p == tb.model.min_period for p in rtl.period)
     assert int(dut.gate_hi_o.value) == 0 and int(dut.gate_lo_o.value) == 0
     u2 = Inputs(FW(300.0), MW(0.5), 700, 30)
     tb.set_inputs(u2)
@@ -145,9 +149,37 @@ async def clamps_and_disable(dut):
     assert int(dut.sat_o.value) == 0 and int(dut.period_clamp_o.value) == 0
 
 
+@cocotb.test()
+async def full_only_inputs(dut):
+    """POLAR mode, DPWM1, double update, prescaler 1: the full core follows them, the compact core ignores
+    them (FREQ mode, SVPWM, an update at every valley); exact against the model in both builds."""
+    tb = CoreTB(dut)
+    u = Inputs(freq=FW(400.0), m=MW(0.7), period=P_VERMA // 2, dt=24, mode=fixed.MODE_POLAR, theta=0x2345,
+               dpwm=fixed.DPWM_60, upd=fixed.UPD_BOTH, presc=1)
+    await tb.reset(u)
+    rtl, exp = await tb.run(u, const(u), 40)
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp, table_i=tb.compact)      # Table I: single-update SVPWM only
+    peak_updates = sum(x.at_peak for x in exp.updates)
+    if tb.compact:
+        assert peak_updates == 0 and len(exp.updates) == 40, "compact: one update per valley, none at a peak"
+        assert len(set(rtl.sector[1:])) > 1, "compact: the phase accumulator turns the vector (FREQ mode)"
+    else:
+        assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
+
+
 def test_svpwm_core(sim):
     # Icarus runs every operating point too (they are short enough), Verilator is ~20x faster.
     run_sim(sim, toplevel="tb_svpwm_core",
             sources=sorted((REPO / "rtl").glob("*.sv")) + [Path(__file__).parent / "tb_svpwm_core.sv"],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="default",
+            testcase=os.environ.get("SVPWM_TESTCASE") or None)
+
+
+def test_svpwm_core_compact(sim):
+    # the compact variant: the same tests, the same model with compact=True
+    run_sim(sim, toplevel="tb_svpwm_core",
+            sources=sorted((REPO / "rtl").glob("*.sv")) + [Path(__file__).parent / "tb_svpwm_core.sv"],
+            test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
+            parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
             testcase=os.environ.get("SVPWM_TESTCASE") or None)

@@ -6,8 +6,12 @@
 // middle of a carrier period.
 // Parameters:
 //   AddrWidth - byte address width of the register port (>= 7); addresses without a register read 0
-//   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
+//   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
+//               MinPeriod defaults to the core's default of the variant (48, compact 118)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
+//   Compact   - 1: the compact variant (small FPGAs): svpwm_core's compact core (FREQ mode, continuous
+//               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
+//               (docs/registers.md, column compact; the others read 0); read back in FEATURES.compact
 //   The core's widths are fixed by the register map: CntWidth 16, PhaseWidth 34, FreqWidth 24,
 //   DtWidth 10 (change rdl/svpwm.rdl and regenerate to change them).
 // Latency: register port: a write is in the register the clock after req_i; read data the clock after.
@@ -15,8 +19,9 @@
 `default_nettype none
 
 module svpwm_mmio #(
+  parameter bit         Compact   = 1'b0,
   parameter int         AddrWidth = 8,
-  parameter int         MinPeriod = 48,
+  parameter int         MinPeriod = Compact ? 118 : 48,
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
   parameter int         ClkHz     = 0
@@ -67,7 +72,8 @@ module svpwm_mmio #(
   svpwm_regs #(
     .AddrWidth (AddrWidth),
     .GatePol   (GatePol),
-    .ClkHz     (ClkHz)
+    .ClkHz     (ClkHz),
+    .Compact   (Compact)
   ) u_regs (
     .clk_i (clk_i), .rst_ni (rst_ni),
     .req_i (req_i), .we_i (we_i), .addr_i (addr_i), .wdata_i (wdata_i), .be_i (be_i), .rdata_o (rdata_o),
@@ -86,7 +92,7 @@ module svpwm_mmio #(
 
   svpwm_core #(
     .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
-    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol)
+    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol), .Compact (Compact)
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),

@@ -35,6 +35,7 @@ CMD_WRITE, CMD_READ, RSP_ACK, RSP_NAK = 0x57, 0x52, 0x4B, 0x4E
 ID_VALUE = R.ID.reset
 MAP_MAJOR = R.VERSION.field("major").reset
 MIN_PERIOD = 48          # MinPeriod of the board designs (svpwm_ice40_sys default; not readable)
+MIN_PERIOD_COMPACT = 118  # the same with the compact core (its SampleLead + 4; e.g. the iCEstick)
 # CTRL enumerations (docs/registers.md, CTRL.mode / .dpwm / .upd)
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
@@ -387,9 +388,10 @@ def _locked_check(board: Board, what: str) -> None:
 def _period_check(board: Board, cfg: Config, p: int) -> None:
     top = (1 << cfg.cnt_width) - 1
     dt, mp = board.read(R.DT.addr), board.read(R.MP.addr)
-    low = max(MIN_PERIOD, 2 * (dt + mp))
+    min_period = MIN_PERIOD_COMPACT if board.compact() else MIN_PERIOD
+    low = max(min_period, 2 * (dt + mp))
     if not low <= p <= top:
-        raise ValueError(f"half period {p} clocks is out of range {low} .. {top} (MinPeriod {MIN_PERIOD}, "
+        raise ValueError(f"half period {p} clocks is out of range {low} .. {top} (MinPeriod {min_period}, "
                          f"2 (DT + MP) = {2 * (dt + mp)}; f_sw {_fmt(cfg.fsw_hz(top))} .. "
                          f"{_fmt(cfg.fsw_hz(low))} Hz)")
 

@@ -11,6 +11,8 @@
 //   TimeoutBits - inter-byte timeout of the frame protocol in bit times (1000 = 8.7 ms at 115200)
 //   MinPeriod, FreqMax, GatePol - svpwm_core (via svpwm_mmio); the core's widths are those of the
 //                 register map (CntWidth 16, PhaseWidth 34, FreqWidth 24, DtWidth 10)
+//   Compact     - 1: the compact variant of svpwm_mmio (compact core + the registers it uses; for the
+//                 iCEstick's HX1K); svpwmctl reads it in FEATURES.compact
 // Pins: rx_i / tx_o UART (8N1), fault_ni active low (e.g. a gate driver's FAULT# with a pull-up) into
 // the core's fault_i: the core turns the gates off combinationally, synchronises the pin itself (two
 // flops, STATUS.fault) and latches the trip until CTRL.fault_clear (STATUS.tripped); gate outputs
@@ -21,10 +23,11 @@
 `default_nettype none
 
 module svpwm_ice40_sys #(
+  parameter bit         Compact     = 1'b0,                         // compact core + register subset
   parameter int         ClkHz       = 48_000_000,                   // core clock in Hz
   parameter int         ClksPerBit  = (ClkHz + 115_200 / 2) / 115_200,  // 115200 baud, rounded
   parameter int         TimeoutBits = 1000,                         // inter-byte timeout, bit times
-  parameter int         MinPeriod   = 48,                           // svpwm_core MinPeriod
+  parameter int         MinPeriod   = Compact ? 118 : 48,           // svpwm_core MinPeriod (its default)
   parameter int         FreqMax     = (1 << 23) - 1,                // svpwm_core FreqMax (FreqWidth 24)
   parameter logic [1:0] GatePol     = 2'b00                         // svpwm_core GatePol, CTRL.pol reset
 ) (
@@ -74,7 +77,8 @@ module svpwm_ice40_sys #(
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),
-    .ClkHz     (ClkHz)
+    .ClkHz     (ClkHz),
+    .Compact   (Compact)
   ) u_mmio (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),

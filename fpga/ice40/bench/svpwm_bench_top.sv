@@ -8,11 +8,13 @@
 `default_nettype none
 
 module svpwm_bench_top #(
+  parameter bit Compact    = 1'b0,             // svpwm_core's compact variant (its unused inputs stay in
+                                               // the shift register, so wrapper_lc is the same)
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 48
+  parameter int MinPeriod  = Compact ? 118 : 48
 ) (
   input  wire        clk_i,
   input  wire        rst_ni,
@@ -38,6 +40,7 @@ module svpwm_bench_top #(
   end
 
   svpwm_core #(
+    .Compact    (Compact),
     .CntWidth   (CntWidth),
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),

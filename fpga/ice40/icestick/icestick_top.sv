@@ -2,15 +2,17 @@
 // icestick_top: svpwm on the Lattice iCEstick (iCE40HX1K-TQ144). 12 MHz oscillator -> SB_PLL40_CORE ->
 // core clock (default 48.000 MHz), reset synchroniser on the PLL lock (the board has no button),
 // svpwm_ice40_sys with the UART at 115200 baud on the FTDI channel B pins in front of the generated
-// register map (docs/registers.md), six gates and an active-low fault input on the PMOD J2, run on
+// register map (docs/registers.md), the COMPACT core (svpwm_core Compact = 1: FREQ mode, continuous
+// SVPWM, valley updates, serial calculator; the registers it uses -- FEATURES.compact = 1), six gates and an active-low fault input on the PMOD J2, run on
 // the green LED D5, fault (tripped) on the red LED D1. Pins: icestick.pcf.
 // Parameters:
 //   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
 //                 one place to change it (nextpnr derives the clock constraint from the PLL settings
 //                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
-//   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol)
-// Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The core with the
-// register map's widths does not fit the HX1K's 1280 logic cells (fpga/ice40/README.md).
+//   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol); MinPeriod >= the
+//                 compact core's SampleLead + 4 = 118
+// Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The full core does not
+// fit the HX1K's 1280 logic cells; the compact one does (fpga/ice40/README.md).
 `default_nettype none
 
 module icestick_top #(
@@ -24,7 +26,7 @@ module icestick_top #(
   parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
-  parameter int         MinPeriod      = 48,
+  parameter int         MinPeriod      = 118,
   parameter int         FreqMax        = (1 << 23) - 1,
   parameter logic [1:0] GatePol        = 2'b00
 ) (
@@ -77,7 +79,8 @@ module icestick_top #(
     .ClkHz     (ClkHz),
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
-    .GatePol   (GatePol)
+    .GatePol   (GatePol),
+    .Compact   (1'b1)
   ) u_sys (
     .clk_i       (clk),
     .rst_ni      (rst_n),

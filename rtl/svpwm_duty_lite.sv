@@ -9,7 +9,7 @@
 //   snap    minimum-pulse rule on each C with thr = dead time + minimum pulse (as rtl/svpwm_minpulse.sv)
 // One 26-bit adder does everything, one operation per clock: a radix-2 right-shift
 // multiplier (multiplicand pre-shifted so the accumulator ends on the wanted bits, rounding constants
-// preloaded), a restoring divider (2 rem - D), sums, and the compare values; one combinational snap.
+// preloaded), a non-restoring divider (2 rem -+ D), sums, and the compare values; one combinational snap.
 // Parameters: CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1 bits.
 // Latency: Latency = 113 clocks from start_i to done_o, fixed (independent of the data); outputs hold until
 // the next done_o (also across abort_i, which returns to idle without done_o); the done cycle is idle, so
@@ -50,27 +50,29 @@ module svpwm_duty_lite #(
   end
 
   // ---- schedule (st_q = step; the ROM answers one step after its address) -----------------------
-  //   1..3     read R[i+1], R[i]: d = R[i+1] - R[i]; a = R[i] 2^8 + 128
-  //   4..11    8 multiply steps d * fr                       -> a = sb
-  //   12..13   read R[255-i], R[256-i]: d = -(R[256-i] - R[255-i]); h = sb; a = R[256-i] 2^8 + 127
-  //   14..21   8 multiply steps (-d2) * fr                   -> a = sa
-  //   22       l = sa, a = 2^15
-  //   23..38   16 multiply steps (2m) * sa                   -> a = T1 = (m sa + 2^14) >> 15
-  //   39       l = sb, h = T1, a = 2^15
-  //   40..55   16 multiply steps (2m) * sb                   -> a = T2
-  //   56       first = T1 <= T2 (sign of T2 - T1)
-  //   57       s = T1 + T2, sat = s > 2^16; h = D = sat ? s : 2^16; a = min; mx = cap(max)
-  //   58..73   16 restoring divide steps min 2^16 / D         -> l = q (= min when not saturated)
-  //   74       mx = cap(2^16 - q) if sat (the larger dwell time); a = 0
-  //   75..90   16 multiply steps (P 2^8) * q                  -> a = floor(q P / 2^8)
-  //   91       h = a, l = mx, a = 0
-  //   92..107  16 multiply steps (P 2^8) * mx                 -> a = floor(mx P / 2^8)
-  //   108      h = Dd = (mx P >> 8) - (q P >> 8)   (>= 0)
-  //   109      a = S  = (mx P >> 8) + (q P >> 8)
-  //   110..112 phase a, b, c: C = (base +- S or +- Dd) >> 9, snapped; results with done_o after 112
-  localparam logic [6:0] StInterp0 = 7'd4,  StInterp1 = 7'd14, StDuty0 = 7'd23, StDuty1 = 7'd40;
-  localparam logic [6:0] StCmpDiff = 7'd56, StSum = 7'd57, StDiv = 7'd58, StTmax = 7'd74;
-  localparam logic [6:0] StProd0 = 7'd75, StProd1 = 7'd92, StDd = 7'd108, StS = 7'd109, StC = 7'd110;
+  //   0 (idle) address R[i+1] from angle_i, so that the start clock already reads the ROM
+  //   1..2     R[i+1], R[i]: d = R[i+1] - R[i]; a = R[i] 2^8 + 128
+  //   3..10    8 multiply steps d * fr                       -> a = sb
+  //   11..12   R[255-i], R[256-i]: d = -(R[256-i] - R[255-i]); h = sb; a = R[256-i] 2^8 + 127
+  //   13..20   8 multiply steps (-d2) * fr                   -> a = sa
+  //   21       l = sa, a = 2^15
+  //   22..37   16 multiply steps (2m) * sa                   -> a = T1 = (m sa + 2^14) >> 15
+  //   38       l = sb, h = T1, a = 2^15
+  //   39..54   16 multiply steps (2m) * sb                   -> a = T2
+  //   55       first = T1 <= T2 (sign of T2 - T1)
+  //   56       s = T1 + T2, sat = s > 2^16; h = D = sat ? s : 2^16; a = min; mx = cap(max)
+  //   57..72   16 non-restoring divide steps min 2^16 / D    -> l = q (= min when not saturated)
+  //   73       mx = cap(2^16 - q) if sat (the larger dwell time); a = 0
+  //   74..89   16 multiply steps (P 2^8) * q                 -> a = floor(q P / 2^8)
+  //   90       h = a, l = mx, a = 0
+  //   91..106  16 multiply steps (P 2^8) * mx                -> a = floor(mx P / 2^8)
+  //   107      h = Dd = (mx P >> 8) - (q P >> 8)   (>= 0)
+  //   108      a = S  = (mx P >> 8) + (q P >> 8)
+  //   109..111 phase a, b, c: C = (base +- S or +- Dd) >> 9 into l (a and h swap so that a holds the K of
+  //            the phase); 110..112 snap the C of the step before; results with done_o after 112
+  localparam logic [6:0] StInterp0 = 7'd3,  StInterp1 = 7'd13, StDuty0 = 7'd22, StDuty1 = 7'd39;
+  localparam logic [6:0] StCmpDiff = 7'd55, StSum = 7'd56, StDiv = 7'd57, StTmax = 7'd73;
+  localparam logic [6:0] StProd0 = 7'd74, StProd1 = 7'd91, StDd = 7'd107, StS = 7'd108, StC = 7'd109;
 
   // ---- state -------------------------------------------------------------------------------------
   logic [6:0]            st_d, st_q;
@@ -97,24 +99,30 @@ module svpwm_duty_lite #(
     .data_o (rom_data)
   );
 
-  always_comb begin
-    unique case (st_q)
-      7'd1:    rom_addr = {1'b0, idx_q} + 9'd1;      // R[i+1]
-      7'd2:    rom_addr = {1'b0, idx_q};             // R[i]
-      7'd11:   rom_addr = 9'd255 - {1'b0, idx_q};    // R[255-i]
-      default: rom_addr = 9'd256 - {1'b0, idx_q};    // R[256-i] (step 12)
-    endcase
-  end
+  // idle, steps 1, 10, 11: R[i+1], R[i], R[255-i], R[256-i]; 255 - i = ~i, so one incrementer:
+  // st_q[3] picks ~i (steps 10, 11), 1 is added when idle and in step 11
+  logic [7:0] rom_i;
+  assign rom_i    = idle_q ? angle_i[15:8] : idx_q ^ {8{st_q[3]}};
+  assign rom_addr = {1'b0, rom_i} + {8'd0, idle_q | (st_q[0] & st_q[3])};
 
   // ---- step decode ---------------------------------------------------------------------------------
-  logic ph_interp, ph_duty, ph_prod, ph_mul, ph_div, ph_c;
-  assign ph_interp = (st_q >= StInterp0 && st_q < StInterp0 + 7'd8) ||
-                     (st_q >= StInterp1 && st_q < StInterp1 + 7'd8);
-  assign ph_duty   = (st_q >= StDuty0 && st_q < StDuty0 + 7'd16) || (st_q >= StDuty1 && st_q < StDuty1 + 7'd16);
-  assign ph_prod   = (st_q >= StProd0 && st_q < StProd0 + 7'd16) || (st_q >= StProd1 && st_q < StProd1 + 7'd16);
-  assign ph_mul    = ph_interp || ph_duty || ph_prod;
-  assign ph_div    = st_q >= StDiv && st_q < StDiv + 7'd16;
-  assign ph_c      = st_q >= StC;
+  // step-class masks indexed by st_q (a lookup, no comparators)
+  function automatic logic [127:0] steps(input logic [6:0] first, input int n);
+    steps = '0;
+    for (int k = int'(first); k < int'(first) + n; k++) steps[k] = 1'b1;
+  endfunction
+  localparam logic [127:0] MaskInterp = steps(StInterp0, 8) | steps(StInterp1, 8);
+  localparam logic [127:0] MaskDuty   = steps(StDuty0, 16) | steps(StDuty1, 16);
+  localparam logic [127:0] MaskMul    = MaskInterp | MaskDuty | steps(StProd0, 16) | steps(StProd1, 16);
+  localparam logic [127:0] MaskDiv    = steps(StDiv, 16);
+  localparam logic [127:0] MaskC      = steps(StC, 3);
+
+  logic ph_interp, ph_duty, ph_mul, ph_div, ph_c;
+  assign ph_interp = MaskInterp[st_q];
+  assign ph_duty   = MaskDuty[st_q];
+  assign ph_mul    = MaskMul[st_q];
+  assign ph_div    = MaskDiv[st_q];
+  assign ph_c      = MaskC[st_q];
 
   // ---- compare-value selection: AVR495 Table 4-3 ------------------------------------------------
   // per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = T1 P, B = T2 P
@@ -131,12 +139,11 @@ module svpwm_duty_lite #(
 
   logic [5:0] sel;
   logic [1:0] code;          // code of the phase of this step (110: a, 111: b, 112: c)
-  logic       c_dd, c_neg;   // this phase uses Dd (else S); negative
+  logic       c_neg;         // this phase adds -K (K = S for codes 0, 1; Dd for 2, 3, in a_q then)
   assign sel   = sector_sel(sec_q);
   assign code  = (st_q == StC) ? sel[1:0] : (st_q == StC + 7'd1) ? sel[3:2] : sel[5:4];
-  assign c_dd  = code[1];
   // A - B = -Dd when T1 is the smaller dwell time (first), +Dd otherwise
-  assign c_neg = c_dd ? (code[0] ^ first_q) : code[0];
+  assign c_neg = code[1] ? (code[0] ^ first_q) : code[0];
 
   // ---- the adder: r = opa + (opb ^ inv) + cin ------------------------------------------------------
   logic [W-1:0] opa, opb, xsel, base, r;
@@ -158,7 +165,11 @@ module svpwm_duty_lite #(
     cin = 1'b0;
     if (ph_mul) begin
       opb = l_q[0] ? xsel : '0;
-    end else if (ph_div || st_q == StS) begin         // 2 rem - D;  2 (mx P >> 8) - Dd
+    end else if (ph_div) begin                        // non-restoring: 2 rem -+ D by the sign of rem
+      opa = {a_q[W-2:0], 1'b0};
+      inv = !a_q[W-1];
+      cin = !a_q[W-1];
+    end else if (st_q == StS) begin                   // 2 (mx P >> 8) - Dd
       opa = {a_q[W-2:0], 1'b0};
       inv = 1'b1;
       cin = 1'b1;
@@ -171,7 +182,6 @@ module svpwm_duty_lite #(
       inv = 1'b1;
       cin = 1'b1;
     end else if (ph_c) begin                          // K + base, or K + ~base = K - base - 1
-      opa = c_dd ? h_q : a_q;
       opb = base;
       inv = c_neg;
     end
@@ -201,13 +211,13 @@ module svpwm_duty_lite #(
   // P - ceil(thr/2), whichever is nearer. Requires P >= 2 thr, c <= P.
   localparam int SW = CntWidth + 2;
   logic [SW-1:0] s_c, s_thr, s_hthr, s_e, s_p;
-  assign s_c    = SW'(c_val);
+  assign s_c    = SW'(l_q[CntWidth-1:0]);            // the compare value of the previous step
   assign s_p    = SW'(p_q);
   assign s_thr  = SW'(thr_q);
   assign s_hthr = (s_thr + SW'(1)) >> 1;
   assign s_e    = s_p - s_c;
   always_comb begin
-    c_snap = c_val;
+    c_snap = l_q[CntWidth-1:0];
     if (s_c < s_thr) begin
       c_snap = ({s_c[SW-2:0], 1'b0} < s_thr) ? '0 : CntWidth'(thr_q);
     end else if (s_e < s_hthr) begin
@@ -245,29 +255,29 @@ module svpwm_duty_lite #(
       a_d = {1'b0, r[W-1:1]};
       l_d = {1'b0, l_q[15:1]};
     end
-    if (ph_div) begin                   // restoring: rem = 2 rem - D if >= 0; quotient bit in
-      a_d = ge ? r : {a_q[W-2:0], 1'b0};
+    if (ph_div) begin                   // non-restoring: rem = 2 rem -+ D; quotient bit = rem >= 0
+      a_d = r;
       l_d = {l_q[14:0], ge};
     end
     unique case (st_q)
-      7'd2:  d_d = rom_data[9:0];                               // R[i+1]
-      7'd3: begin
+      7'd1:  d_d = rom_data[9:0];                               // R[i+1]
+      7'd2: begin
         d_d = d_q - rom_data[9:0];                              // R[i+1] - R[i]
         a_d = W'({rom_data, 8'h80});
       end
-      7'd12: begin
+      7'd11: begin
         d_d = rom_data[9:0];                                    // R[255-i]
         h_d = a_q;                                              // sb
       end
-      7'd13: begin
+      7'd12: begin
         d_d = d_q - rom_data[9:0];                              // -(R[256-i] - R[255-i])
         a_d = W'({rom_data, 8'h7F});                            // r2 - ((z + 128) >> 8) = (256 r2 + 127 - z) >> 8
       end
-      7'd22: begin
+      7'd21: begin
         l_d = a_q[15:0];                                        // sa
         a_d = W'(32'h8000);
       end
-      7'd39: begin
+      7'd38: begin
         l_d = h_q[15:0];                                        // sb
         h_d = a_q;                                              // T1
         a_d = W'(32'h8000);
@@ -283,17 +293,41 @@ module svpwm_duty_lite #(
         if (sat_q) m_d = tmax;
         a_d = '0;
       end
-      7'd91: begin
+      7'd90: begin
         h_d = a_q;                                              // (q P) >> 8
         l_d = m_q;
         a_d = '0;
       end
       StDd: h_d = r;
-      StS:  a_d = r;
-      7'd110: m_d = 16'(c_snap);
-      7'd111: l_d = 16'(c_snap);
+      StS: begin                                                // a = K of phase a, h = the other
+        if (sel[1]) begin
+          a_d = h_q;
+          h_d = r;
+        end else begin
+          a_d = r;
+        end
+      end
+      7'd109: begin
+        l_d = 16'(c_val);                                       // C_a
+        if (sel[1] != sel[3]) begin                             // phase b needs the other K
+          a_d = h_q;
+          h_d = a_q;
+        end
+      end
+      7'd110: begin
+        m_d = 16'(c_snap);                                      // C_a snapped
+        l_d = 16'(c_val);                                       // C_b
+        if (sel[3] != sel[5]) begin
+          a_d = h_q;
+          h_d = a_q;
+        end
+      end
+      7'd111: begin
+        h_d = W'(c_snap);                                       // C_b snapped
+        l_d = 16'(c_val);                                       // C_c
+      end
       7'd112: begin
-        cmp_d        = {c_snap, l_q[CntWidth-1:0], m_q[CntWidth-1:0]};
+        cmp_d        = {c_snap, h_q[CntWidth-1:0], m_q[CntWidth-1:0]};
         sector_out_d = sec_q;
         sat_out_d    = sat_q;
         done_d       = 1'b1;

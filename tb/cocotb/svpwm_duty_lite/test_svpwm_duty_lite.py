@@ -25,7 +25,8 @@ Checks:
 Vectors: `directed` (same on both simulators): every sector x angles 0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF
 x m 0, 1, 0x4000, 0x7FFF, 0x8000, 0x8001, 0x93CD (vertex), 0x93CE, 0xC000, 0xFFFF x (P, thr) corners: small P,
 P = 2 thr with thr 0 / odd / even / the largest, P = 2^CntWidth - 1; plus every ROM interval end (angle
-k*256 - 1, k*256) at the vertex and m = 0xFFFF. `random`: seeded, 20000 on Verilator, 2000 on Icarus
+k*256 - 1, k*256) at the vertex and m = 0xFFFF. `angle_sweep`: every angle 0 .. 0xFFFF (every 61st on Icarus)
+with m = vertex, vertex + 1, 0xFFFF or random. `random`: seeded, 100000 on Verilator, 5000 on Icarus
 (LITE_NRAND overrides), with thr near P/2 and snapping values made likely.
 Builds: CntWidth 16 and 12 (DtWidth 10).
 """
@@ -247,10 +248,25 @@ async def directed_vectors(dut):
 async def random_vectors(dut):
     """Seeded random vectors: all sectors, angles, m; periods [8, 2^CntWidth - 1] with thr up to min(P/2, max)."""
     tb = LiteTB(dut)
-    n = int(os.environ.get("LITE_NRAND", 2000 if icarus() else 20000))
+    n = int(os.environ.get("LITE_NRAND", 5000 if icarus() else 100000))
     rng = random.Random(0x1D7E + tb.W)
     await tb.reset()
     await tb.run_vectors(rand_vectors(rng, n, tb.top, tb.thr_max), rng, "random")
+
+
+@cocotb.test()
+async def angle_sweep(dut):
+    """Every in-sector angle 0 .. 0xFFFF (Verilator; every 61st on Icarus) at the vertex m and beyond, random
+    sector, period and thr: every ROM interval and interpolation fraction, both clamp branches."""
+    tb = LiteTB(dut)
+    rng = random.Random(0x5EE9 + tb.W)
+    step = 61 if icarus() else 1
+    vecs = []
+    for a in range(0, 1 << 16, step):
+        v = tb.legal(rng)
+        vecs.append(Vec(v.sector, a, (M_VERTEX, M_VERTEX + 1, 0xFFFF, v.m)[a & 3], v.period, v.thr))
+    await tb.reset()
+    await tb.run_vectors(vecs, rng, "angle sweep")
 
 
 class Ref:

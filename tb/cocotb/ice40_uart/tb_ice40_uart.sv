@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // tb_ice40_uart: harness around svpwm_ice40_sys (UART bridge + svpwm_mmio: generated register map +
-// svpwm_core) for test_ice40_uart.py. 10 ns clock (ClkHz 100 MHz, read back in CLK_HZ) generated here;
+// svpwm_core; full or compact) for test_ice40_uart.py. 10 ns clock (ClkHz 100 MHz, read back in CLK_HZ) generated here;
 // cocotb drives only rx_i / fault_ni / rst_ni and watches tx_o, the gates and the LEDs. `cycle` counts
 // clocks (incremented at every rising edge) so that the test can time pin edges in exact clocks;
 // `gates` = {gate_lo_o, gate_hi_o}, the word format of the golden model's gate edges.
@@ -10,7 +10,8 @@
 module tb_ice40_uart #(
   parameter int ClkHz       = 100_000_000,
   parameter int ClksPerBit  = 8,
-  parameter int TimeoutBits = 40
+  parameter int TimeoutBits = 40,
+  parameter bit Compact     = 1'b0      // the compact system (iCEstick): svpwm_core / svpwm_regs Compact = 1
 ) (
   input  logic        rst_ni,
   input  logic        rx_i,
@@ -33,7 +34,8 @@ module tb_ice40_uart #(
   svpwm_ice40_sys #(
     .ClkHz       (ClkHz),
     .ClksPerBit  (ClksPerBit),
-    .TimeoutBits (TimeoutBits)
+    .TimeoutBits (TimeoutBits),
+    .Compact     (Compact)
   ) u_sys (
     .clk_i       (clk),
     .rst_ni      (rst_ni),

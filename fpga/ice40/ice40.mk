@@ -20,12 +20,12 @@ ICE40_COMMON := $(sort $(wildcard $(ICE40_DIR)/common/*.sv))
 
 # Per-board parameter overrides (a board's device, top, pins and sources are in ice40flow.py: BOARDS)
 ICE40_PARAMS_icebreaker ?=
-# The iCEstick top uses the compact variant; it still does not fit the HX1K (2320 / 1280 LC, README)
+# The iCEstick top uses the compact variant; it still does not fit the HX1K (1588 / 1280 LC, README)
 ICE40_PARAMS_icestick   ?=
 
 .PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40
 
-# Boards `make test` builds: the iCEstick's HX1K (1280 LC) cannot hold even the compact design (2320 LC),
+# Boards `make test` builds: the iCEstick's HX1K (1280 LC) cannot hold even the compact design (1588 LC),
 # so its build fails at placement (README, fpga/ice40/README.md)
 ICE40_TEST_BOARDS ?= icebreaker
 

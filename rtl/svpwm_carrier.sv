@@ -46,7 +46,7 @@ module svpwm_carrier #(
       count_d = '0;
       up_d    = 1'b1;
     end else begin
-      count_d = up_q ? count_q + 1'b1 : count_q - 1'b1;
+      count_d = count_q + {{(CntWidth-1){!up_q}}, 1'b1};   // +1 up, -1 down: one adder
       if (up_q && top) up_d = 1'b0;
       if (!up_q && count_q == CntWidth'(1))   up_d = 1'b1;
     end

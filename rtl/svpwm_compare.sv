@@ -25,10 +25,9 @@ module svpwm_compare #(
 
   always_comb begin
     pole_d = '0;
-    for (int ph = 0; ph < 3; ph++) begin
-      if (up_i) pole_d[ph] = count_i >= cmp_i[ph*CntWidth +: CntWidth];
-      else      pole_d[ph] = count_i >  cmp_i[ph*CntWidth +: CntWidth];
-    end
+    // count >= C counting up, count > C counting down, as one comparison (one carry chain per phase):
+    // {count, up} >= {C, 1}
+    for (int ph = 0; ph < 3; ph++) pole_d[ph] = {count_i, up_i} >= {cmp_i[ph*CntWidth +: CntWidth], 1'b1};
     if (!run_i) pole_d = '0;
   end
 

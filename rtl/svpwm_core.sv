@@ -330,7 +330,7 @@ module svpwm_core #(
   logic [2:0]            acc_sector;
   logic [PhaseWidth-1:0] acc_angle;
 
-  svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth)) u_phase (
+  svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(!Compact)) u_phase (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .run_i    (run),
@@ -382,8 +382,10 @@ module svpwm_core #(
       .sector_i (acc_sector),
       .angle_i  (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),
       .m_i      (m_q),
-      .period_i (calc_period_d),
-      .thr_i    (calc_thr_d),
+      // read only at start_i; compact updates are valley updates only (start_q implies ev_valley_q), so
+      // these are calc_period_d / calc_thr_d at the start without the registers (removed by synthesis)
+      .period_i (period_next_q),
+      .thr_i    ({1'b0, dt_next_q} + {1'b0, mp_next_q}),
       .busy_o   (duty_busy),
       .done_o   (snap_done),
       .sector_o (duty_sector),
@@ -395,7 +397,7 @@ module svpwm_core #(
     // inputs of the modes the compact variant does not have (removed by synthesis)
     logic unused_full;
     assign unused_full = ^{mode_q, theta_q, v1_q, v2_q, vf_boost_q, vf_slope_q, vf_mmax_q, dpwm_q, fabs,
-                           calc_period_q, calc_thr_q, sync_en_i, upd_i, presc_i};
+                           calc_period_d, calc_thr_d, ev_valley_q, sync_en_i, upd_i, presc_i};
   end else begin : gen_full
     logic [3*CntWidth-1:0] duty_cmp;
     logic                  duty_done;

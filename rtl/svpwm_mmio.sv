@@ -11,9 +11,12 @@
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
 //   Compact   - 1: the compact variant (small FPGAs): svpwm_core's compact core (FREQ mode, continuous
 //               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
-//               (docs/registers.md, column compact; the others read 0); read back in FEATURES.compact
-//   The core's widths are fixed by the register map: CntWidth 16, PhaseWidth 34, FreqWidth 24,
-//   DtWidth 10 (change rdl/svpwm.rdl and regenerate to change them).
+//               (docs/registers.md, column compact; the others read 0; no MP: the core runs with a
+//               minimum pulse of 0, every gate pulse still lasts >= DT); read back in FEATURES.compact
+//   CntWidth  - the core's carrier / period / compare width, 8..16 (default 16, the PERIOD field's; the
+//               iCEstick uses 12 to fit the HX1K); a PERIOD above 2^CntWidth - 1 runs as 2^CntWidth - 1
+//               and sets STATUS.period_clamp while it is there. Read back in CONFIG.cnt_width.
+//   The other widths are those of the register map: PhaseWidth 34, FreqWidth 24, DtWidth 10 (CONFIG).
 // Latency: register port: a write is in the register the clock after req_i; read data the clock after.
 // Restrictions: see svpwm_regs (one access per clock, be_i byte lanes).
 `default_nettype none
@@ -24,7 +27,8 @@ module svpwm_mmio #(
   parameter int         MinPeriod = Compact ? 230 : 48,
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
-  parameter int         ClkHz     = 0
+  parameter int         ClkHz     = 0,
+  parameter int         CntWidth  = 16
 ) (
   input  logic                 clk_i,              // core and bus clock
   input  logic                 rst_ni,             // asynchronous reset, active low
@@ -50,11 +54,15 @@ module svpwm_mmio #(
   output logic                 tripped_o           // safe state forced (e.g. an LED)
 );
 
-  // Field widths of the register map (rdl/svpwm.rdl) = the core's width parameters.
-  localparam int CntWidth   = 16;
+  // Field widths of the register map (rdl/svpwm.rdl) = the core's width parameters (CntWidth: up to)
+  localparam int PeriodBits = 16;
   localparam int PhaseWidth = 34;
   localparam int FreqWidth  = 24;
   localparam int DtWidth    = 10;
+
+  if (CntWidth < 8 || CntWidth > PeriodBits) begin : gen_bad_cnt_width
+    initial $fatal(1, "svpwm_mmio: CntWidth must be 8..%0d, got %0d", PeriodBits, CntWidth);
+  end
 
   // ---- register block <-> core -------------------------------------------------------------------
   logic                        en, sync_en, trip_cbc, safe_lo, lock, fault_clear;
@@ -62,7 +70,9 @@ module svpwm_mmio #(
   logic [2:0]                  mode;
   logic [FreqWidth-1:0]        freq;
   logic [15:0]                 m, theta, v1, v2, vf_boost, vf_slope, vf_mmax;
-  logic [CntWidth-1:0]         period, carrier, period_act;
+  logic [PeriodBits-1:0]       period;
+  logic [CntWidth-1:0]         period_core, carrier, period_act;
+  logic                        period_over, period_clamp_core;
   logic [DtWidth-1:0]          dt, mp;
   logic [7:0]                  presc;
   logic                        carrier_up, sat, cfg_err, period_clamp, freq_clamp, fault, locked;
@@ -71,6 +81,10 @@ module svpwm_mmio #(
 
   svpwm_regs #(
     .AddrWidth (AddrWidth),
+    .DtWidth   (8'(DtWidth)),
+    .CntWidth  (8'(CntWidth)),
+    .FreqWidth (8'(FreqWidth)),
+    .PhaseWidth(8'(PhaseWidth)),
     .GatePol   (GatePol),
     .ClkHz     (ClkHz),
     .Compact   (Compact)
@@ -86,9 +100,20 @@ module svpwm_mmio #(
     .status_running_i (running_o), .status_sat_i (sat), .status_cfg_err_i (cfg_err),
     .status_period_clamp_i (period_clamp), .status_freq_clamp_i (freq_clamp), .status_fault_i (fault),
     .status_tripped_i (tripped_o), .status_locked_i (locked), .status_sector_i (sector),
-    .carrier_count_i (carrier), .carrier_up_i (carrier_up), .period_act_i (period_act),
-    .cmp_a_i (cmp[CntWidth-1:0]), .cmp_b_i (cmp[2*CntWidth-1:CntWidth]), .cmp_c_i (cmp[3*CntWidth-1:2*CntWidth])
+    .carrier_count_i (PeriodBits'(carrier)), .carrier_up_i (carrier_up), .period_act_i (PeriodBits'(period_act)),
+    .cmp_a_i (PeriodBits'(cmp[CntWidth-1:0])), .cmp_b_i (PeriodBits'(cmp[2*CntWidth-1:CntWidth])),
+    .cmp_c_i (PeriodBits'(cmp[3*CntWidth-1:2*CntWidth]))
   );
+
+  // PERIOD above the core's range: the largest period it has (a clamp, flagged like a raised period)
+  if (CntWidth < PeriodBits) begin : gen_period_clamp
+    assign period_over = |period[PeriodBits-1:CntWidth];
+    assign period_core = period_over ? '1 : period[CntWidth-1:0];
+  end else begin : gen_period_full
+    assign period_over = 1'b0;
+    assign period_core = period;
+  end
+  assign period_clamp = period_clamp_core || period_over;
 
   svpwm_core #(
     .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
@@ -96,7 +121,7 @@ module svpwm_mmio #(
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
-    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .upd_i (upd), .presc_i (presc), .period_i (period),
+    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .upd_i (upd), .presc_i (presc), .period_i (period_core),
     .dt_i (dt), .mp_i (mp), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
     .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),
     .pol_i (pol), .lock_i (lock),
@@ -104,7 +129,7 @@ module svpwm_mmio #(
     .carrier_up_o (carrier_up), .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o),
     .adc_trig_o (adc_trig_o), .sync_o (sync_o), .sector_o (sector), .cmp_o (cmp),
     .period_o (period_act), .running_o (running_o), .sat_o (sat), .cfg_err_o (cfg_err),
-    .period_clamp_o (period_clamp), .freq_clamp_o (freq_clamp), .fault_o (fault),
+    .period_clamp_o (period_clamp_core), .freq_clamp_o (freq_clamp), .fault_o (fault),
     .tripped_o (tripped_o), .locked_o (locked)
   );
 

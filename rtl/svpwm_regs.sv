@@ -4,6 +4,10 @@
 // per clock with req_i; RW fields drive the svpwm_core inputs, RO fields read the core's outputs.
 // Parameters:
 //   AddrWidth - byte address width (>= 7); every address bit is decoded, addr_i[1:0] ignored
+//   DtWidth - value of CONFIG.dt_width (rst_param; RDL default 10)
+//   CntWidth - value of CONFIG.cnt_width (rst_param; RDL default 16)
+//   FreqWidth - value of CONFIG.freq_width (rst_param; RDL default 24)
+//   PhaseWidth - value of CONFIG.phase_width (rst_param; RDL default 34)
 //   GatePol - reset value of CTRL.pol (rst_param; RDL default 0)
 //   ClkHz - int >= 0, value of CLK_HZ.clk_hz (rst_param; RDL default 0)
 //   Compact - 1: the compact variant: only the registers and fields marked in_compact in
@@ -18,6 +22,10 @@
 
 module svpwm_regs #(
   parameter int AddrWidth = 8,
+  parameter logic [7:0] DtWidth = 8'hA,
+  parameter logic [7:0] CntWidth = 8'h10,
+  parameter logic [7:0] FreqWidth = 8'h18,
+  parameter logic [7:0] PhaseWidth = 8'h22,
   parameter logic [1:0] GatePol = 2'h0,
   parameter int ClkHz = 0,
   parameter bit Compact = 1'b0
@@ -51,7 +59,7 @@ module svpwm_regs #(
   output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW (not in the compact variant)
   output logic [15:0]  period_o,               // PERIOD.period: RW
   output logic [9:0]   dt_o,                   // DT.dt: RW
-  output logic [9:0]   mp_o,                   // MP.mp: RW
+  output logic [9:0]   mp_o,                   // MP.mp: RW (not in the compact variant)
   output logic [7:0]   presc_o,                // PRESC.presc: RW (not in the compact variant)
   input  logic         status_running_i,       // STATUS.running: RO (live)
   input  logic         status_sat_i,           // STATUS.sat: RO (live)
@@ -122,7 +130,6 @@ module svpwm_regs #(
   logic [15:0]  m_d, m_q, m_wr;
   logic [15:0]  period_d, period_q, period_wr;
   logic [9:0]   dt_d, dt_q, dt_wr;
-  logic [9:0]   mp_d, mp_q, mp_wr;
   assign ctrl_en_wr = be_i[0] ? wdata_i[0] : ctrl_en_q;
   assign ctrl_trip_cbc_wr = be_i[0] ? wdata_i[2] : ctrl_trip_cbc_q;
   assign ctrl_safe_lo_wr = be_i[0] ? wdata_i[3] : ctrl_safe_lo_q;
@@ -133,7 +140,6 @@ module svpwm_regs #(
   assign m_wr = {(be_i[1] ? wdata_i[15:8] : m_q[15:8]), (be_i[0] ? wdata_i[7:0] : m_q[7:0])};
   assign period_wr = {(be_i[1] ? wdata_i[15:8] : period_q[15:8]), (be_i[0] ? wdata_i[7:0] : period_q[7:0])};
   assign dt_wr = {(be_i[1] ? wdata_i[9:8] : dt_q[9:8]), (be_i[0] ? wdata_i[7:0] : dt_q[7:0])};
-  assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
 
   always_comb begin
     ctrl_en_d = ctrl_en_q;
@@ -146,7 +152,6 @@ module svpwm_regs #(
     m_d = m_q;
     period_d = period_q;
     dt_d = dt_q;
-    mp_d = mp_q;
     if (wr) begin
       case (idx)
         IdxCtrl: begin
@@ -169,9 +174,6 @@ module svpwm_regs #(
         IdxDt: begin
           dt_d = dt_wr;
         end
-        IdxMp: begin
-          mp_d = mp_wr;
-        end
         default: ;
       endcase
     end
@@ -189,7 +191,6 @@ module svpwm_regs #(
       m_q <= 16'h0;
       period_q <= 16'h600;
       dt_q <= 10'h0;
-      mp_q <= 10'h0;
     end else begin
       ctrl_en_q <= ctrl_en_d;
       ctrl_trip_cbc_q <= ctrl_trip_cbc_d;
@@ -201,7 +202,6 @@ module svpwm_regs #(
       m_q <= m_d;
       period_q <= period_d;
       dt_q <= dt_d;
-      mp_q <= mp_d;
     end
   end
 
@@ -217,6 +217,7 @@ module svpwm_regs #(
   logic [15:0]  vf_boost_q;
   logic [15:0]  vf_slope_q;
   logic [15:0]  vf_mmax_q;
+  logic [9:0]   mp_q;
   logic [7:0]   presc_q;
   if (!Compact) begin : gen_full
     logic         ctrl_sync_en_d, ctrl_sync_en_wr;
@@ -230,6 +231,7 @@ module svpwm_regs #(
     logic [15:0]  vf_boost_d, vf_boost_wr;
     logic [15:0]  vf_slope_d, vf_slope_wr;
     logic [15:0]  vf_mmax_d, vf_mmax_wr;
+    logic [9:0]   mp_d, mp_wr;
     logic [7:0]   presc_d, presc_wr;
     assign ctrl_sync_en_wr = be_i[0] ? wdata_i[1] : ctrl_sync_en_q;
     assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
@@ -242,6 +244,7 @@ module svpwm_regs #(
     assign vf_boost_wr = {(be_i[1] ? wdata_i[15:8] : vf_boost_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_boost_q[7:0])};
     assign vf_slope_wr = {(be_i[1] ? wdata_i[15:8] : vf_slope_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_slope_q[7:0])};
     assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
+    assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
     assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
 
     always_comb begin
@@ -256,6 +259,7 @@ module svpwm_regs #(
       vf_boost_d = vf_boost_q;
       vf_slope_d = vf_slope_q;
       vf_mmax_d = vf_mmax_q;
+      mp_d = mp_q;
       presc_d = presc_q;
       if (wr) begin
         case (idx)
@@ -284,6 +288,9 @@ module svpwm_regs #(
           IdxVfMmax: begin
             vf_mmax_d = vf_mmax_wr;
           end
+          IdxMp: begin
+            mp_d = mp_wr;
+          end
           IdxPresc: begin
             presc_d = presc_wr;
           end
@@ -305,6 +312,7 @@ module svpwm_regs #(
         vf_boost_q <= 16'h0;
         vf_slope_q <= 16'h0;
         vf_mmax_q <= 16'h0;
+        mp_q <= 10'h0;
         presc_q <= 8'h0;
       end else begin
         ctrl_sync_en_q <= ctrl_sync_en_d;
@@ -318,6 +326,7 @@ module svpwm_regs #(
         vf_boost_q <= vf_boost_d;
         vf_slope_q <= vf_slope_d;
         vf_mmax_q <= vf_mmax_d;
+        mp_q <= mp_d;
         presc_q <= presc_d;
       end
     end
@@ -333,6 +342,7 @@ module svpwm_regs #(
     assign vf_boost_q = 16'h0;
     assign vf_slope_q = 16'h0;
     assign vf_mmax_q = 16'h0;
+    assign mp_q = 10'h0;
     assign presc_q = 8'h0;
     // live inputs and data bits only the full variant reads
     logic unused_compact;
@@ -343,9 +353,9 @@ module svpwm_regs #(
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h2, 16'h2};
+  assign rd_version = {16'h2, 16'h3};
   logic [31:0] rd_config;
-  assign rd_config = {8'h22, 8'h18, 8'h10, 8'hA};
+  assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
   assign rd_ctrl = {10'h0, ctrl_adc_trig_q, 2'h0, ctrl_dpwm_q, 2'h0, ctrl_upd_q, 1'h0, ctrl_mode_q, 1'h0, ctrl_lock_q, ctrl_pol_q, ctrl_safe_lo_q, ctrl_trip_cbc_q, ctrl_sync_en_q, ctrl_en_q};
   logic [31:0] rd_freq;
@@ -369,7 +379,7 @@ module svpwm_regs #(
   logic [31:0] rd_dt;
   assign rd_dt = {22'h0, dt_q};
   logic [31:0] rd_mp;
-  assign rd_mp = {22'h0, mp_q};
+  assign rd_mp = Compact ? 32'h0 : {22'h0, mp_q};
   logic [31:0] rd_presc;
   assign rd_presc = Compact ? 32'h0 : {24'h0, presc_q};
   logic [31:0] rd_status;

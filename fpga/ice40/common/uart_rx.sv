@@ -26,7 +26,7 @@ module uart_rx #(
   logic [2:0]    st_q;              // 0 idle, 1 start, 2 data, 3 stop, 4 after a framing error
   logic [CW-1:0] cnt_q;
   logic [2:0]    bit_q;
-  logic [7:0]    sh_q;
+  logic [7:0]    sh_q;              // shift register; holds the byte from its stop bit to the next start
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -35,7 +35,6 @@ module uart_rx #(
       cnt_q       <= '0;
       bit_q       <= '0;
       sh_q        <= '0;
-      data_o      <= '0;
       valid_o     <= 1'b0;
       frame_err_o <= 1'b0;
     end else begin
@@ -60,7 +59,6 @@ module uart_rx #(
         3'd3: if (cnt_q != '0) cnt_q <= cnt_q - 1'b1;
               else if (sync_q[2]) begin                     // good stop bit: idle in its middle
                 st_q    <= 3'd0;
-                data_o  <= sh_q;
                 valid_o <= 1'b1;
               end else begin                                // stop bit low: wait for the line to go
                 st_q        <= 3'd4;                        // high, so the rest of the low stop bit
@@ -70,6 +68,7 @@ module uart_rx #(
       endcase
     end
   end
+  assign data_o = sh_q;                                     // unchanged until the next data bit
 endmodule
 
 `default_nettype wire

@@ -3,8 +3,10 @@
 // core clock (default 48.000 MHz), reset synchroniser on the PLL lock (the board has no button),
 // svpwm_ice40_sys with the UART at 115200 baud on the FTDI channel B pins in front of the generated
 // register map (docs/registers.md), the COMPACT core (svpwm_core Compact = 1: FREQ mode, continuous
-// SVPWM, valley updates, serial calculator; the registers it uses -- FEATURES.compact = 1), six gates and an active-low fault input on the PMOD J2, run on
-// the green LED D5, fault (tripped) on the red LED D1. Pins: icestick.pcf.
+// SVPWM, valley updates, serial calculator; the registers it uses, no minimum pulse register --
+// FEATURES.compact = 1) with a 12-bit carrier (CntWidth 12: PERIOD <= 4095, f_sw >= 5.9 kHz at 48 MHz),
+// six gates and an active-low fault input on the PMOD J2, run on the green LED D5, fault (tripped) on
+// the red LED D1. Pins: icestick.pcf.
 // Parameters:
 //   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
 //                 one place to change it (nextpnr derives the clock constraint from the PLL settings
@@ -12,7 +14,7 @@
 //   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol); MinPeriod >= the
 //                 compact core's SampleLead + 4 = 230
 // Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The full core does not
-// fit the HX1K's 1280 logic cells; the compact one does (fpga/ice40/README.md).
+// fit the HX1K's 1280 logic cells; this compact system does (fpga/ice40/README.md has the figures).
 `default_nettype none
 
 module icestick_top #(
@@ -80,7 +82,8 @@ module icestick_top #(
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),
-    .Compact   (1'b1)
+    .Compact   (1'b1),
+    .CntWidth  (12)
   ) u_sys (
     .clk_i       (clk),
     .rst_ni      (rst_n),

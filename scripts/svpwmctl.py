@@ -9,7 +9,7 @@ model/svpwm_model/regmap.py). Protocol (fpga/ice40/README.md, uart_reg_bridge.sv
   a frame with a bad checksum       -> 'N'
 Physical units use the core clock the board states in CLK_HZ (--clk-hz when it reads 0) and the
 widths in CONFIG; values out of range are refused, never clamped. A board whose FEATURES.compact reads 1
-has the compact variant (FREQ mode, continuous SVPWM, valley updates; e.g. the iCEstick): writes to the
+has the compact variant (FREQ mode, continuous SVPWM, valley updates, no MP; e.g. the iCEstick): writes to the
 registers and fields it does not have (docs/registers.md, column compact) are refused, nothing is written.
 
 Examples:
@@ -40,7 +40,7 @@ MIN_PERIOD_COMPACT = 230  # the same with the compact core (its SampleLead + 4; 
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
 UPD = {"valley": 0, "peak": 1, "both": 2}
-COMPACT_TEXT = "compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start"
+COMPACT_TEXT = "compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start, no MP"
 
 
 def absent_mask(reg: R.Register) -> int:
@@ -313,7 +313,7 @@ class Board:
             "fsw_hz": _fmt(cfg.fsw_hz(v["PERIOD"]), 8) if v["PERIOD"] else "-", "period_clocks": v["PERIOD"],
             "period_act_clocks": v.get("PERIOD_ACT", "-"),          # not in the compact variant
             "dt_us": _fmt(cfg.us(v["DT"])), "dt_clocks": v["DT"],
-            "mp_us": _fmt(cfg.us(v["MP"])), "mp_clocks": v["MP"],
+            "mp_us": _fmt(cfg.us(v["MP"])) if "MP" in v else "-", "mp_clocks": v.get("MP", "-"),  # not compact
             "clk_hz": cfg.clk_hz,
         })
         return out
@@ -473,6 +473,7 @@ def run(args, board: Board) -> str:
         return f"PERIOD = {p} clocks (f_sw {_fmt(cfg.fsw_hz(p), 8)} Hz)"
     if c in ("set-dt", "set-mp"):
         reg, what = (R.DT, "dead time") if c == "set-dt" else (R.MP, "minimum pulse")
+        board.check_present(reg, reg.mask())          # the compact variant has no MP
         n = cfg.clocks(parse_num(args.us), what)
         _locked_check(board, what)
         period = board.read(R.PERIOD.addr)

@@ -25,16 +25,16 @@ ICE40_PARAMS_icestick   ?=
 
 .PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40
 
-# Boards `make test` builds: the iCEstick's HX1K (1280 LC) cannot hold even the compact design (1588 LC),
-# so its build fails at placement (README, fpga/ice40/README.md)
-ICE40_TEST_BOARDS ?= icebreaker
+# Boards `make test` builds: both (the iCEstick with the compact system, fpga/ice40/README.md)
+ICE40_TEST_BOARDS ?= icebreaker icestick
 
 # The board system (UART bridge + svpwm_mmio) under the rules of `make lint`; the board tops need the
 # vendor PLL primitive and are elaborated by the bitstream build.
 lint: lint-ice40
 lint-ice40: $(STAMP)
 	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
-	@echo "lint-ice40: clean (svpwm_ice40_sys)"
+	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys -GCompact=1 $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
+	@echo "lint-ice40: clean (svpwm_ice40_sys full and Compact = 1)"
 
 bitstream: $(STAMP)
 	$(PY) $(ICE40_DIR)/ice40flow.py --board $(BOARD) --seed $(ICE40_SEED) \

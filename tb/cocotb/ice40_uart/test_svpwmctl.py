@@ -23,6 +23,7 @@ import svpwmctl as ctl  # noqa: E402
 from svpwm_model import fixed  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
+MAP_VERSION = f"{R.VERSION.field('major').reset}.{R.VERSION.field('minor').reset}"   # generated map
 CONFIG_48 = R.CONFIG.reset       # the widths of the generated map: PhaseWidth 34, FreqWidth 24, Cnt 16, Dt 10
 
 
@@ -33,10 +34,11 @@ class FakeBoard:
     CTRL.fault_clear pulse clears its tripped bit unless the fault bit is set (the core's latch).
     compact: the compact variant (R.variant(True): absent registers and fields read 0, ignore writes)."""
 
-    def __init__(self, clk_hz=48_000_000, answer=True, version=None, compact=False):
+    def __init__(self, clk_hz=48_000_000, answer=True, version=None, compact=False, cnt_width=16):
         self.map = {r.addr: r for r in R.variant(compact)}
         self.regs = {r.addr: r.reset for r in self.map.values()}
         self.regs[R.CLK_HZ.addr] = clk_hz
+        self.regs[R.CONFIG.addr] = R.CONFIG.encode(**{**R.CONFIG.decode(R.CONFIG.reset), "cnt_width": cnt_width})
         self.regs[R.FEATURES.addr] = R.FEATURES.encode(compact=int(compact))
         if version is not None:
             self.regs[R.VERSION.addr] = version
@@ -188,7 +190,7 @@ def test_status_and_reads():
     assert cmd(fb, "read", "status.sector") == "4"
     assert cmd(fb, "read", "0x80") == "0x00000000"
     assert cmd(fb, "read", "CLK_HZ") == "0x02dc6c00  clk_hz=48000000"
-    assert cmd(fb, "info").startswith("ID 0x53565057 (svpwm), register map 2.2, clock 48000000 Hz")
+    assert cmd(fb, "info").startswith(f"ID 0x53565057 (svpwm), register map {MAP_VERSION}, clock 48000000 Hz")
     assert cmd(fb, "info").endswith("DtWidth 10, full variant") and st["variant"] == "full"
     dump = cmd(fb, "dump").splitlines()
     assert [line.split()[1] for line in dump] == [r.name for r in R.REGISTERS]
@@ -263,37 +265,42 @@ def test_locked_and_period_rules():
 
 def test_compact_board():
     """A compact board (FEATURES.compact = 1): the registers and fields it has work as on the full
-    board; writes to the others are refused with nothing written; info / status / dump say so."""
-    fb = FakeBoard(compact=True)
+    board; writes to the others are refused with nothing written; info / status / dump say so. Like the
+    iCEstick's system it has a 12-bit carrier (CONFIG.cnt_width): PERIOD above 4095 is refused."""
+    fb = FakeBoard(compact=True, cnt_width=12)
     info = cmd(fb, "info")
-    assert info.startswith("ID 0x53565057 (svpwm), register map 2.2, clock 48000000 Hz")
-    assert info.endswith("compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start "
+    assert info.startswith(f"ID 0x53565057 (svpwm), register map {MAP_VERSION}, clock 48000000 Hz")
+    assert "CntWidth 12" in info, info
+    assert info.endswith("compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start, no MP "
                          "(FEATURES.compact)"), info
     cmd(fb, "set-dt", "0.5")
-    cmd(fb, "set-mp", "0.25")
     cmd(fb, "set-period", "--fsw", "20000")
     cmd(fb, "set-freq", "50")
     cmd(fb, "set-m", "0.9")
     cmd(fb, "write", "CTRL.pol", "2")
     cmd(fb, "start")
-    assert [fb.regs[r.addr] for r in (R.DT, R.MP, R.PERIOD, R.FREQ, R.M, R.CTRL)] == \
-        [24, 12, 1200, 107374, 0x7333, R.CTRL.encode(en=1, pol=2)]
+    assert [fb.regs[r.addr] for r in (R.DT, R.PERIOD, R.FREQ, R.M, R.CTRL)] == \
+        [24, 1200, 107374, 0x7333, R.CTRL.encode(en=1, pol=2)]
+    assert R.MP.addr not in fb.regs                    # no MP register on this board
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35
     cmd(fb, "write", "0x80", "1")                      # unmapped in both variants: as before
     lo = fixed.LITE_MIN_PERIOD                         # the compact core's MinPeriod (SampleLead + 4)
     assert ctl.MIN_PERIOD_COMPACT == lo and ctl.MIN_PERIOD == fixed.MIN_PERIOD
-    with pytest.raises(ValueError, match=f"out of range {lo} .. 65535"):
+    with pytest.raises(ValueError, match=f"out of range {lo} .. 4095"):
         cmd(fb, "set-period", "--clocks", str(lo - 1))
+    with pytest.raises(ValueError, match=f"out of range {lo} .. 4095"):
+        cmd(fb, "set-period", "--clocks", "4096")
     cmd(fb, "set-period", "--clocks", str(lo))
     assert fb.regs[R.PERIOD.addr] == lo
     st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
     assert st["variant"] == "compact" and st["mode"] == "freq" and st["period_act_clocks"] == "-"
+    assert st["mp_clocks"] == "-" and st["mp_us"] == "-"
     assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]
     absent = [r for r in R.REGISTERS if not r.compact]
     assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
-                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C"}
-    refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"],
+                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP"}
+    refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"], ["set-mp", "0.25"],
                ["write", "CTRL.mode", "0"], ["write", "CTRL.sync_en", "1"], ["write", "ctrl.adc_trig", "1"],
                ["write", "CTRL", "0x101"], ["write", "CTRL", "0x2"], ["write", "CTRL", "-1"]]
     refused += [["write", r.name, "0"] for r in absent] + [["write", f"0x{r.addr:x}", "1"] for r in absent]

@@ -35,9 +35,11 @@ class TB:
     def __init__(self, dut):
         self.dut = dut
         self.bus = None
-        # wrapper parameters that give field values (rst_param), as passed to the harness
-        self.params = {"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"]),
-                       "Compact": int(os.environ["SVPWM_COMPACT"])}
+        # wrapper parameters that give field values (rst_param): those the harness is given, the others at
+        # their RDL default (the CONFIG widths)
+        self.params = {f.rst_param: f.reset for r in R.REGISTERS for f in r.fields if f.rst_param}
+        self.params.update({"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"]),
+                            "Compact": int(os.environ["SVPWM_COMPACT"])})
         self.compact = bool(self.params["Compact"])
         self.map = R.variant(self.compact)               # the registers / fields this variant has
         self.by_addr = {r.addr: r for r in self.map}

@@ -6,7 +6,8 @@
 
 module tb_svpwm_phase_acc #(
   parameter int PhaseWidth = 34,
-  parameter int FreqWidth  = 24
+  parameter int FreqWidth  = 24,
+  parameter bit CarrySelect = 1'b1
 ) (
   input  logic                        rst_ni,
   input  logic                        run_i,
@@ -27,7 +28,8 @@ module tb_svpwm_phase_acc #(
 
   svpwm_phase_acc #(
     .PhaseWidth (PhaseWidth),
-    .FreqWidth  (FreqWidth)
+    .FreqWidth  (FreqWidth),
+    .CarrySelect(CarrySelect)
   ) u_dut (
     .clk_i    (clk),
     .rst_ni   (rst_ni),

@@ -1,7 +1,7 @@
 # svpwm build & test entry point.  Everything runs inside a local venv (.venv)
 # that this Makefile creates from requirements.txt.
 #
-#   make test                 rom-check + model tests + lint + sim (both simulators) + iCEBreaker bitstream
+#   make test                 rom-check + model tests + lint + sim (both simulators) + both iCE40 bitstreams
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
 #   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
 
@@ -96,10 +96,10 @@ bench: $(STAMP)
 	$(PY) scripts/bench.py
 
 rom: $(STAMP)
-	$(PY) scripts/gen_sine_rom.py
+	$(PY) scripts/gen_tables.py
 
 rom-check: $(STAMP)
-	$(PY) scripts/gen_sine_rom.py --check
+	$(PY) scripts/gen_tables.py --check
 
 clean:
 	rm -rf build .pytest_cache sim_build results.xml

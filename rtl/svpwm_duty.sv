@@ -176,19 +176,6 @@ module svpwm_duty #(
   assign pi_h = prod_q[23:8];
   assign pi_b = prod_q[7];
 
-  // ---- compare values: AVR495 Table 4-3 ----------------------------------------------------------
-  // selection per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = T1 P, B = T2 P
-  function automatic logic [5:0] sector_sel(input logic [2:0] s);
-    unique case (s)
-      3'd0:    sector_sel = {2'd0, 2'd2, 2'd1};   // sector 1: a -da-db, b da-db, c da+db
-      3'd1:    sector_sel = {2'd0, 2'd1, 2'd3};   // sector 2: a -da+db, b -da-db, c da+db
-      3'd2:    sector_sel = {2'd2, 2'd1, 2'd0};   // sector 3: a da+db, b -da-db, c da-db
-      3'd3:    sector_sel = {2'd1, 2'd3, 2'd0};   // sector 4: a da+db, b -da+db, c -da-db
-      3'd4:    sector_sel = {2'd1, 2'd0, 2'd2};   // sector 5: a da-db, b da+db, c -da-db
-      default: sector_sel = {2'd3, 2'd0, 2'd1};   // sector 6: a -da-db, b da+db, c -da+db
-    endcase
-  endfunction
-
   // ---- sector from the projections (AB, DQ) ------------------------------------------------------
   // (continuous assignments throughout this and the next two sections: always_comb blocks that re-read
   // variables they assign more than once hung Icarus 11 in zero-delay loops)
@@ -256,7 +243,12 @@ module svpwm_duty #(
   assign sum_ab = KWidth'($signed(sum_q));
   assign dif_ab = KWidth'($signed(dif_q));
   assign base   = KWidth'({p_q, 8'd0}) + KWidth'(9'd256);   // (P + 1) << 8
-  assign sel    = sector_sel(sector_q);
+
+  // AVR495 Table 4-3 per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = T1 P, B = T2 P
+  svpwm_sector_sel u_sel (          // generated from the model's SECTOR_SEL
+    .sector_i (sector_q),
+    .sel_o    (sel)
+  );
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_cmp
     logic signed [KWidth-1:0] k_ph;

@@ -425,22 +425,16 @@ module svpwm_duty_lite #(
 
   // ---- compare-value selection: AVR495 Table 4-3 ----------------------------------------------------
   // per phase: 0: +(A+B)  1: -(A+B)  2: +(A-B)  3: -(A-B), A = T1 P, B = T2 P
-  function automatic logic [5:0] sector_sel(input logic [2:0] s);
-    unique case (s)
-      3'd0:    sector_sel = {2'd0, 2'd2, 2'd1};   // sector 1: a -da-db, b da-db, c da+db
-      3'd1:    sector_sel = {2'd0, 2'd1, 2'd3};   // sector 2: a -da+db, b -da-db, c da+db
-      3'd2:    sector_sel = {2'd2, 2'd1, 2'd0};   // sector 3: a da+db, b -da-db, c da-db
-      3'd3:    sector_sel = {2'd1, 2'd3, 2'd0};   // sector 4: a da+db, b -da+db, c -da-db
-      3'd4:    sector_sel = {2'd1, 2'd0, 2'd2};   // sector 5: a da-db, b da+db, c -da-db
-      default: sector_sel = {2'd3, 2'd0, 2'd1};   // sector 6: a -da-db, b da+db, c -da+db
-    endcase
-  endfunction
 
   logic [5:0] sel;
   logic [1:0] code;     // Table 4-3 code of the phase of the next step (uc_ph)
   logic       ksel;     // K = Dd (stored as -2Dd), else S
   logic       neg;      // the phase adds -K
-  assign sel  = sector_sel(sec_q);
+
+  svpwm_sector_sel u_sel (          // generated from the model's SECTOR_SEL
+    .sector_i (sec_q),
+    .sel_o    (sel)
+  );
   assign code = (uc_ph == 2'd0) ? sel[1:0] : (uc_ph == 2'd1) ? sel[3:2] : sel[5:4];
   assign ksel = code[1];
   // A - B = -Dd when T1 is the smaller dwell time (first); the word holds -2Dd

@@ -30,15 +30,22 @@ def test_regmap_consistent():
     assert (R.CMP_C.addr, R.CLK_HZ.addr) == (0x54, 0x58)
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
-    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter
-    assert (R.FEATURES.addr, R.VERSION.reset, R.SIZE) == (0x5C, 0x0002_0002, 0x60)
+    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter; map 2.3: the same offsets
+    assert (R.FEATURES.addr, R.VERSION.reset, R.SIZE) == (0x5C, 0x0002_0003, 0x60)
     f = R.FEATURES.field("compact")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param, f.compact) == ("const", 0, 1, 0, R.VARIANT_PARAM, True)
     assert R.VARIANT_PARAM == "Compact" and R.FEATURES.mask() == 1
+    # CONFIG (map 2.3): each width is the wrapper's parameter of that name, default the map's field widths
+    assert {f.name: (f.rst_param, f.reset) for f in R.CONFIG.fields} == {
+        "dt_width": ("DtWidth", 10), "cnt_width": ("CntWidth", 16), "freq_width": ("FreqWidth", 24),
+        "phase_width": ("PhaseWidth", 34)}
+    assert (R.PERIOD.field("period").width, R.DT.field("dt").width, R.MP.field("mp").width,
+            R.FREQ.field("freq").width) == (16, 10, 10, 24)
 
 
-# what the compact core uses (FREQ mode, continuous SVPWM, valley updates, no sync start)
-COMPACT_REGS = {"ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "MP", "STATUS", "CLK_HZ", "FEATURES"}
+# what the compact core uses (FREQ mode, continuous SVPWM, valley updates, no sync start; map 2.3: no MP,
+# the core runs with a minimum pulse of 0 -- what fits the iCEstick's HX1K)
+COMPACT_REGS = {"ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "STATUS", "CLK_HZ", "FEATURES"}
 COMPACT_CTRL = ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear"]
 
 

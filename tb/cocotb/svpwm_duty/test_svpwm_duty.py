@@ -419,6 +419,7 @@ BUILDS = {"cnt16": {"CntWidth": 16}, "cnt12": {"CntWidth": 12}}
 @pytest.mark.parametrize("build", list(BUILDS))
 def test_svpwm_duty(sim, build):
     run_sim(sim, toplevel="tb_svpwm_duty",
-            sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_duty.sv", Path(__file__).parent / "tb_svpwm_duty.sv"],
+            sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_sector_sel.sv", REPO / "rtl/svpwm_duty.sv",
+                     Path(__file__).parent / "tb_svpwm_duty.sv"],
             test_module="test_svpwm_duty", test_dir=Path(__file__).parent,
             parameters=BUILDS[build], build_name=build)

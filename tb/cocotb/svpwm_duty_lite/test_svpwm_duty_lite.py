@@ -353,7 +353,7 @@ BUILDS = {"cnt16": {"CntWidth": 16, "DtWidth": 10}, "cnt12": {"CntWidth": 12, "D
 @pytest.mark.parametrize("build", list(BUILDS))
 def test_svpwm_duty_lite(sim, build):
     run_sim(sim, toplevel="tb_svpwm_duty_lite",
-            sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_duty_lite.sv",
+            sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_sector_sel.sv", REPO / "rtl/svpwm_duty_lite.sv",
                      Path(__file__).parent / "tb_svpwm_duty_lite.sv"],
             test_module="test_svpwm_duty_lite", test_dir=Path(__file__).parent,
             parameters={**BUILDS[build], "Latency": fixed.LITE_DUTY_LATENCY}, build_name=build)

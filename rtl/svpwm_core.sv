@@ -670,6 +670,8 @@ module svpwm_core #(
   end
   // a locked configuration does not change
   // the compact calculator reads period_next_q / dt_next_q + mp_next_q at its start: only valley updates
+  // (the update mode stays "valley", so every computation starts from a valley sample)
+  always_comb if (Compact && rst_ni) assert (upd_q == UpdValley);
   always_comb if (Compact && rst_ni && start_q) assert (ev_valley_q);
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
     assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && mp_cfg_q == $past(mp_cfg_q)

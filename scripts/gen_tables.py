@@ -18,6 +18,7 @@ sys.path.insert(0, str(REPO / "model"))
 from svpwm_model.fixed import ROM_BITS, ROM_SIZE, SECTOR_SEL, SIN_BITS, sine_table  # noqa: E402
 
 SEL_TEXT = ("+(da+db)", "-(da+db)", "+(da-db)", "-(da-db)")    # the codes of SECTOR_SEL
+SV_END = ["", "endmodule", "", "`default_nettype wire", ""]     # the last lines of every generated module
 
 
 def render_rom() -> str:
@@ -58,12 +59,7 @@ def render_rom() -> str:
         "  end",
         "",
         "  assign data_o = top_q ? SinTop : mem_q;",
-        "",
-        "endmodule",
-        "",
-        "`default_nettype wire",
-        "",
-    ]
+    ] + SV_END
     return "\n".join(lines)
 
 
@@ -92,15 +88,7 @@ def render_sector_sel() -> str:
         lab = f"3'd{k}:   " if k < 5 else "default:"
         lines.append(f"      {lab} sel_o = {{2'd{c}, 2'd{b}, 2'd{a}}};   // sector {k + 1}: "
                      f"a {SEL_TEXT[a]}, b {SEL_TEXT[b]}, c {SEL_TEXT[c]}")
-    lines += [
-        "    endcase",
-        "  end",
-        "",
-        "endmodule",
-        "",
-        "`default_nettype wire",
-        "",
-    ]
+    lines += ["    endcase", "  end"] + SV_END
     return "\n".join(lines)
 
 

@@ -185,6 +185,18 @@ def check_switching(edges, p: int, dt: int, legs=(0, 1, 2), snapshot: bool = Fal
                 assert lo_after[0] - b == dt, f"leg {k}: hi off {b} -> lo on {lo_after[0]}, dead time != {dt}"
 
 
+async def start_against_model(dut, u: Uart, g: Gates, inp: core.Inputs, n: int) -> int:
+    """Write CTRL.en = 1 with `inp` on the registers, run n carrier periods and compare every gate edge with
+    the golden model (its cycle 0 = the clock the reply to the write starts); returns that clock."""
+    c0 = await u.write(R.CTRL, R.CTRL.encode(en=1))
+    await ClockCycles(dut.clk, 2 * inp.period * n + 10 - (int(dut.cycle.value) - c0))
+    model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
+    got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
+    assert got == model.gate_edges, (f"gate edges differ from the model (period {inp.period}):\n"
+                                     f" got {got[:12]}\nexp {model.gate_edges[:12]}")
+    return c0
+
+
 # --------------------------------------------------------------------------- tests
 @cocotb.test()
 async def id_and_reset_values(dut):
@@ -250,13 +262,7 @@ async def writes_drive_the_gates(dut):
     g = Gates(dut)
     await ClockCycles(dut.clk, 300)
     assert g.edges == [], "gates switched while disabled"
-    c0 = await u.write(R.CTRL, R.CTRL.encode(en=1))
-    n = 8
-    await ClockCycles(dut.clk, 2 * p * n + 10 - (int(dut.cycle.value) - c0))
-    inp = core.Inputs(freq=0, m=m, period=p, dt=dt)
-    model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
-    got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
-    assert got == model.gate_edges, f"gate edges differ from the model:\n got {got[:12]}\nexp {model.gate_edges[:12]}"
+    await start_against_model(dut, u, g, core.Inputs(freq=0, m=m, period=p, dt=dt), 8)
     check_switching(g.edges, p, dt)
     assert await u.read(R.CTRL) == R.CTRL.encode(en=1)
     st = R.STATUS.decode(await u.read(R.STATUS))
@@ -421,13 +427,7 @@ async def period_beyond_the_carrier(dut):
     assert await u.read(R.PERIOD) == want                           # the register keeps what was written
     assert R.STATUS.decode(await u.read(R.STATUS))["period_clamp"] == int(want > top)
     g = Gates(dut)
-    c0 = await u.write(R.CTRL, R.CTRL.encode(en=1))
-    n = 3
-    await ClockCycles(dut.clk, 2 * p * n + 10 - (int(dut.cycle.value) - c0))
-    inp = core.Inputs(freq=0, m=m, period=p, dt=dt)
-    model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
-    got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
-    assert got == model.gate_edges, f"gate edges differ from the model (period {p}):\n got {got[:12]}\nexp {model.gate_edges[:12]}"
+    await start_against_model(dut, u, g, core.Inputs(freq=0, m=m, period=p, dt=dt), 3)
     assert R.STATUS.decode(await u.read(R.STATUS))["period_clamp"] == int(want > top)
     await u.write(R.PERIOD, P_RUN)                                  # back in range: the flag goes
     await ClockCycles(dut.clk, 2 * p + 4 * P_RUN)

@@ -70,27 +70,15 @@ module tb_svpwm_duty #(
     .err_o      (err_o)
   );
 
-  // ---- handshake checker: sees the outputs of the previous clock at each rising edge ----
-  logic [3*CntWidth+4:0] out_prev;
-  logic                  done_prev;
-  int                    busy_run;
-
-  always @(posedge clk or negedge rst_ni) begin
-    if (!rst_ni) begin
-      chk_o     <= '0;
-      out_prev  <= '0;
-      done_prev <= 1'b0;
-      busy_run  <= 0;
-    end else begin
-      if ({sector_o, cmp_o, sat_o, err_o} != out_prev && !done_o) chk_o[0] <= 1'b1;
-      if (done_o && done_prev) chk_o[1] <= 1'b1;
-      if (done_o && (busy_o || busy_run != BusyClocks)) chk_o[2] <= 1'b1;
-      if (busy_run > BusyClocks) chk_o[2] <= 1'b1;
-      out_prev  <= {sector_o, cmp_o, sat_o, err_o};
-      done_prev <= done_o;
-      busy_run  <= busy_o ? busy_run + 1 : 0;
-    end
-  end
+  // ---- handshake checker (chk_o, header): tb/cocotb/calc_handshake_chk.sv ----
+  calc_handshake_chk #(.ResWidth(3 * CntWidth + 5), .BusyClocks(BusyClocks)) u_chk (
+    .clk_i  (clk),
+    .rst_ni (rst_ni),
+    .busy_i (busy_o),
+    .done_i (done_o),
+    .res_i  ({sector_o, cmp_o, sat_o, err_o}),
+    .chk_o  (chk_o)
+  );
 
 endmodule
 

@@ -27,6 +27,8 @@ on the 60 deg sector lines: Y = 0 / Z = 0), DQ (vector grid x theta at every 30 
 theta' = 30 deg exactly (theta = 16384, 49152: the trig switch) and a full revolution), invalid modes 5..7.
 
 Builds: CntWidth 16 (default) and 12. modulate has no width: for P < 2^CntWidth its results lie in [0, P].
+The vector runner, the handshake reference and the harness checker are shared with the compact calculator's
+test: tb/cocotb/calc_tb.py, tb/cocotb/calc_handshake_chk.sv.
 """
 from __future__ import annotations
 
@@ -34,20 +36,17 @@ import itertools
 import math
 import os
 import random
-import time
 import zlib
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer, with_timeout
-from cocotb.utils import get_sim_time
 
+from calc_tb import CalcTB, icarus
 from simrun import REPO, run_sim
 from svpwm_model import fixed
 
-CLK_NS = 10
 LATENCY = 34                 # clocks: start_i in cycle c -> done_o in cycle c + LATENCY (RTL DutyLatency)
 P_MIN = 48                   # shortest period exercised
 FSHIFT = fixed.FREQ_WIDTH - 17
@@ -55,10 +54,6 @@ M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexag
 ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
 MS = (0, 1, 0x4000, 0x7FFF, 0x8000, 0x8001, M_VERTEX, M_VERTEX + 1, 0xC000, 0xFFFF)
 VS = (-32768, -32767, -28378, -16384, -8192, -1, 0, 1, 8192, 16384, 18919, 28378, 32767)
-
-
-def icarus() -> bool:
-    return cocotb.SIM_NAME.lower().startswith("icarus")
 
 
 @dataclass(frozen=True)
@@ -78,11 +73,10 @@ class Vec:
     period: int = P_MIN
 
 
-class DutyTB:
-    def __init__(self, dut):
-        self.dut = dut
-        self.W = len(dut.period_i)
-        self.top = (1 << self.W) - 1
+class DutyTB(CalcTB):
+    LATENCY = LATENCY
+    FLAGS = ("sat_o", "err_o")
+    IDLE = Vec()
 
     def expect(self, v: Vec) -> tuple[int, int, int, int, int, int]:
         """(sector, C_a, C_b, C_c, sat, err) by the model; the model is width-free: check the result fits."""
@@ -91,13 +85,6 @@ class DutyTB:
                                           vf_slope=v.slope, vf_mmax=v.mmax, dpwm=v.dpwm)
         assert all(0 <= x <= v.period <= self.top for x in c), (v, c)
         return (sec, *c, int(sat), int(err))
-
-    def outputs(self):
-        d, W = self.dut, self.W
-        cmp = int(d.cmp_o.value)
-        return (int(d.busy_o.value), int(d.done_o.value), int(d.sector_o.value),
-                cmp & self.top, (cmp >> W) & self.top, (cmp >> 2 * W) & self.top,
-                int(d.sat_o.value), int(d.err_o.value))
 
     def drive(self, start: int, v: Vec):
         d = self.dut
@@ -123,78 +110,6 @@ class DutyTB:
                    rng.randint(-32768, 32767), rng.randint(-32768, 32767), rng.randrange(1 << 16),
                    rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(4),
                    rng.randint(P_MIN, self.top))
-
-    async def reset(self):
-        self.drive(0, Vec())
-        self.dut.abort_i.value = 0
-        self.dut.rst_ni.value = 0
-        await FallingEdge(self.dut.clk)
-        await FallingEdge(self.dut.clk)
-        self.dut.rst_ni.value = 1
-        assert self.outputs() == (0,) * 8
-
-    def check_harness(self, what: str):
-        chk = int(self.dut.chk_o.value)
-        assert chk == 0, (f"{what}: harness handshake checker chk_o = {chk:03b} (bit 0: output changed without "
-                          f"done_o, 1: done_o > 1 clock, 2: busy_o length / done_o while busy)")
-
-    async def aborted_start(self, rng: random.Random, k: int):
-        """Start junk, pulse abort_i k clocks after the start edge (k = 0: together with start_i, which then
-        is not accepted; k = 32, 33: in the last steps, so no done_o must follow). The previous results must
-        hold (the harness checker flags any output change without done_o); busy_o must be low afterwards."""
-        dut = self.dut
-        self.drive(1, self.junk(rng))
-        dut.abort_i.value = int(k == 0)
-        await FallingEdge(dut.clk)
-        if k:
-            self.drive(int(rng.random() < 0.5), self.junk(rng))
-            await Timer((k - 1) * CLK_NS + 2, "ns")            # 2 ns after falling edge k (before rising edge k)
-            dut.abort_i.value = 1
-            await FallingEdge(dut.clk)
-        self.drive(0, self.junk(rng))
-        dut.abort_i.value = 0
-        got = self.outputs()
-        assert got[:2] == (0, 0), f"abort {k} clocks after the start: busy_o, done_o = {got[:2]}, expected idle"
-        await FallingEdge(dut.clk)                              # no done_o on its way
-        assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
-        self.check_harness(f"abort {k} clocks after the start")
-
-    async def run_vectors(self, vecs, rng: random.Random, name: str):
-        """Event-driven, back to back: each vector is started in the done cycle of the previous one."""
-        dut = self.dut
-        prev = None
-        t0 = time.perf_counter()
-        await FallingEdge(dut.clk)
-        for i, v in enumerate(vecs):
-            if rng.random() < 0.03:                             # a junk computation aborted after k clocks
-                await self.aborted_start(rng, rng.randint(0, LATENCY - 1))
-            self.drive(1, v)
-            await FallingEdge(dut.clk)
-            t_start = get_sim_time("ns") - CLK_NS // 2         # the rising edge that sampled v
-            got = self.outputs()
-            if prev is not None:                                # busy; done pulse over; results held
-                assert got == (1, 0, *prev), f"{name} {i}: one clock after the start {got}, expected busy + {prev}"
-            else:
-                assert got[:2] == (1, 0), f"{name} {i}: not busy one clock after the start"
-            self.drive(1, self.junk(rng))                       # start_i held high: ignored while busy
-            if rng.random() < 0.25:                             # scramble once more mid-computation
-                await Timer(rng.randint(1, LATENCY - 3) * CLK_NS + 2, "ns")
-                self.drive(int(rng.random() < 0.5), self.junk(rng))
-            await with_timeout(RisingEdge(dut.done_o), (LATENCY + 2) * CLK_NS, "ns")
-            await ReadOnly()
-            dt = get_sim_time("ns") - t_start
-            assert dt == (LATENCY - 1) * CLK_NS, f"{name} {i}: done_o {dt} ns after the start edge"
-            exp = self.expect(v)
-            got = self.outputs()
-            assert got == (0, 1, *exp), (f"{name} {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = "
-                                         f"{got}, model {exp}")
-            prev = exp
-            await FallingEdge(dut.clk)                          # middle of the done cycle
-        self.drive(0, Vec())
-        await FallingEdge(dut.clk)
-        await FallingEdge(dut.clk)
-        self.check_harness(name)
-        dut._log.info("%s: %d vectors == model in %.1f s", name, len(vecs), time.perf_counter() - t0)
 
 
 # ---- vectors --------------------------------------------------------------------------------------------
@@ -326,30 +241,6 @@ async def random_vectors(dut):
     await tb.run_vectors(rand_vectors(rng, n, tb.top), rng, "random")
 
 
-class Ref:
-    """Per-clock reference of the handshake (module docstring), results from fixed.modulate."""
-
-    def __init__(self, tb: DutyTB):
-        self.tb, self.st, self.latch, self.done, self.res = tb, 0, None, 0, (0,) * 6
-        self.starts, self.dones = [], []
-
-    def outputs(self):
-        return (int(self.st != 0), self.done, *self.res)
-
-    def clock(self, cycle: int, start: int, abort: int, v: Vec):
-        self.done = 0
-        if abort:                               # back to idle, no done_o, results held, start_i not taken
-            self.st = 0
-        elif self.st == LATENCY - 1:
-            self.st, self.done, self.res = 0, 1, self.tb.expect(self.latch)
-            self.dones.append(cycle + 1)
-        elif self.st:
-            self.st += 1
-        elif start:                             # idle (incl. the done cycle): accept
-            self.st, self.latch = 1, v
-            self.starts.append(cycle)
-
-
 @cocotb.test()
 async def protocol(dut):
     """Every output on every clock against the reference: single starts with gaps, start_i held high with
@@ -368,35 +259,7 @@ async def protocol(dut):
         sched += [(0, 0, tb.junk(rng)) for _ in range(3)]
     sched += [(int(rng.random() < 0.3), int(rng.random() < 0.02), tb.junk(rng)) for _ in range(300)]
     sched += [(0, 0, tb.junk(rng)) for _ in range(LATENCY + 2)]
-    ref = Ref(tb)
-    trace = []
-    aborts = []
-    for cyc, (start, abort, v) in enumerate(sched):
-        got = tb.outputs()
-        assert got == ref.outputs(), (f"cycle {cyc}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = {got}, "
-                                      f"ref {ref.outputs()}")
-        trace.append(got)
-        tb.drive(start, v)
-        dut.abort_i.value = abort
-        if abort:
-            aborts.append(cyc)
-        ref.clock(cyc, start, abort, v)
-        await FallingEdge(dut.clk)
-    # the handshake, stated directly on the RTL trace
-    assert len(ref.starts) >= 10
-    done_starts = [c for c in ref.starts if not any(c <= a < c + LATENCY for a in aborts)]
-    for c in done_starts:
-        if c + LATENCY < len(trace):
-            assert trace[c + LATENCY][1] == 1, f"no done_o {LATENCY} clocks after the start in cycle {c}"
-            assert all(trace[k][0] == 1 and trace[k][1] == 0 for k in range(c + 1, c + LATENCY))
-    dones = [k for k, t in enumerate(trace) if t[1]]
-    assert dones == [c + LATENCY for c in done_starts if c + LATENCY < len(trace)]
-    for a, b in zip(trace, trace[1:]):
-        if not b[1]:
-            assert b[2:] == a[2:], "outputs changed without done_o"
-    tb.check_harness("protocol")
-    dut._log.info("protocol: %d clocks, %d starts (%d aborted), latency %d clocks", len(sched), len(ref.starts),
-                  len(ref.starts) - len(done_starts), LATENCY)
+    await tb.protocol(sched, 10)
 
 
 @cocotb.test()
@@ -420,6 +283,6 @@ BUILDS = {"cnt16": {"CntWidth": 16}, "cnt12": {"CntWidth": 12}}
 def test_svpwm_duty(sim, build):
     run_sim(sim, toplevel="tb_svpwm_duty",
             sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_sector_sel.sv", REPO / "rtl/svpwm_duty.sv",
-                     Path(__file__).parent / "tb_svpwm_duty.sv"],
+                     REPO / "tb/cocotb/calc_handshake_chk.sv", Path(__file__).parent / "tb_svpwm_duty.sv"],
             test_module="test_svpwm_duty", test_dir=Path(__file__).parent,
             parameters=BUILDS[build], build_name=build)

@@ -28,35 +28,29 @@ P = 2 thr with thr 0 / odd / even / the largest, P = 2^CntWidth - 1; plus every 
 k*256 - 1, k*256) at the vertex and m = 0xFFFF. `angle_sweep`: every angle 0 .. 0xFFFF (every 61st on Icarus)
 with m = vertex, vertex + 1, 0xFFFF or random. `random`: seeded, 100000 on Verilator, 5000 on Icarus
 (LITE_NRAND overrides), with thr near P/2 and snapping values made likely.
-Builds: CntWidth 16 and 12 (DtWidth 10).
+Builds: CntWidth 16 and 12 (DtWidth 10). The vector runner, the handshake reference and the harness checker
+are shared with svpwm_duty's test: tb/cocotb/calc_tb.py, tb/cocotb/calc_handshake_chk.sv.
 """
 from __future__ import annotations
 
 import math
 import os
 import random
-import time
 from pathlib import Path
 from dataclasses import dataclass
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer, with_timeout
-from cocotb.utils import get_sim_time
 
+from calc_tb import CalcTB, icarus
 from simrun import REPO, run_sim
 from svpwm_model import fixed
 
-CLK_NS = 10
 LATENCY = fixed.LITE_DUTY_LATENCY   # clocks: start_i in cycle c -> done_o in cycle c + LATENCY
 P_MIN = 8                           # shortest period exercised (stated minimum of the RTL header: none needed)
 M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexagon vertex
 ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
 MS = (0, 1, 0x4000, 0x7FFF, 0x8000, 0x8001, M_VERTEX, M_VERTEX + 1, 0xC000, 0xFFFF)
-
-
-def icarus() -> bool:
-    return cocotb.SIM_NAME.lower().startswith("icarus")
 
 
 @dataclass(frozen=True)
@@ -76,11 +70,13 @@ def model(v: Vec) -> tuple[int, int, int, int, int]:
     return (v.sector, *(fixed.snap_min_pulse(x, v.period, v.thr) for x in c), int(sat))
 
 
-class LiteTB:
+class LiteTB(CalcTB):
+    LATENCY = LATENCY
+    FLAGS = ("sat_o",)
+    IDLE = Vec()
+
     def __init__(self, dut):
-        self.dut = dut
-        self.W = len(dut.period_i)
-        self.top = (1 << self.W) - 1
+        super().__init__(dut)
         self.thr_max = (1 << len(dut.thr_i)) - 2      # 2^(DtWidth+1) - 2 (dead time + minimum pulse)
 
     def expect(self, v: Vec):
@@ -88,12 +84,6 @@ class LiteTB:
         res = model(v)
         assert all(0 <= x <= v.period for x in res[1:4]), (v, res)
         return res
-
-    def outputs(self):
-        d, W = self.dut, self.W
-        cmp = int(d.cmp_o.value)
-        return (int(d.busy_o.value), int(d.done_o.value), int(d.sector_o.value),
-                cmp & self.top, (cmp >> W) & self.top, (cmp >> 2 * W) & self.top, int(d.sat_o.value))
 
     def drive(self, start: int, v: Vec):
         d = self.dut
@@ -113,77 +103,6 @@ class LiteTB:
         p = rng.randint(P_MIN, self.top)
         return Vec(rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), p,
                    rng.randint(0, min(self.thr_max, p // 2)))
-
-    async def reset(self):
-        self.drive(0, Vec())
-        self.dut.abort_i.value = 0
-        self.dut.rst_ni.value = 0
-        await FallingEdge(self.dut.clk)
-        await FallingEdge(self.dut.clk)
-        self.dut.rst_ni.value = 1
-        assert self.outputs() == (0,) * 7
-
-    def check_harness(self, what: str):
-        chk = int(self.dut.chk_o.value)
-        assert chk == 0, (f"{what}: harness handshake checker chk_o = {chk:03b} (bit 0: output changed without "
-                          f"done_o, 1: done_o > 1 clock, 2: busy_o length != LITE_DUTY_LATENCY - 1 or done_o "
-                          f"while busy)")
-
-    async def aborted_start(self, rng: random.Random, k: int):
-        """Start junk, pulse abort_i k clocks after the start edge (k = 0: with start_i, not accepted then)."""
-        dut = self.dut
-        self.drive(1, self.junk(rng))
-        dut.abort_i.value = int(k == 0)
-        await FallingEdge(dut.clk)
-        if k:
-            self.drive(int(rng.random() < 0.5), self.junk(rng))
-            await Timer((k - 1) * CLK_NS + 2, "ns")            # 2 ns after falling edge k (before rising edge k)
-            dut.abort_i.value = 1
-            await FallingEdge(dut.clk)
-        self.drive(0, self.junk(rng))
-        dut.abort_i.value = 0
-        got = self.outputs()
-        assert got[:2] == (0, 0), f"abort {k} clocks after the start: busy_o, done_o = {got[:2]}, expected idle"
-        await FallingEdge(dut.clk)
-        assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
-        self.check_harness(f"abort {k} clocks after the start")
-
-    async def run_vectors(self, vecs, rng: random.Random, name: str):
-        """Event-driven, back to back: each vector is started in the done cycle of the previous one."""
-        dut = self.dut
-        prev = None
-        t0 = time.perf_counter()
-        await FallingEdge(dut.clk)
-        for i, v in enumerate(vecs):
-            if rng.random() < 0.03:
-                await self.aborted_start(rng, rng.randint(0, LATENCY - 1))
-            self.drive(1, v)
-            await FallingEdge(dut.clk)
-            t_start = get_sim_time("ns") - CLK_NS // 2         # the rising edge that sampled v
-            got = self.outputs()
-            if prev is not None:
-                assert got == (1, 0, *prev), f"{name} {i}: one clock after the start {got}, expected busy + {prev}"
-            else:
-                assert got[:2] == (1, 0), f"{name} {i}: not busy one clock after the start"
-            self.drive(1, self.junk(rng))                       # start_i held high: ignored while busy
-            if rng.random() < 0.25:
-                await Timer(rng.randint(1, LATENCY - 3) * CLK_NS + 2, "ns")
-                self.drive(int(rng.random() < 0.5), self.junk(rng))
-            await with_timeout(RisingEdge(dut.done_o), (LATENCY + 2) * CLK_NS, "ns")
-            await ReadOnly()
-            dt = get_sim_time("ns") - t_start
-            assert dt == (LATENCY - 1) * CLK_NS, f"{name} {i}: done_o {dt} ns after the start edge"
-            exp = self.expect(v)
-            got = self.outputs()
-            assert got == (0, 1, *exp), (f"{name} {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc, sat) = "
-                                         f"{got}, model {exp}")
-            prev = exp
-            await FallingEdge(dut.clk)
-        self.drive(0, Vec())
-        await FallingEdge(dut.clk)
-        await FallingEdge(dut.clk)
-        self.check_harness(name)
-        dut._log.info("%s: %d vectors == model in %.1f s", name, len(vecs), time.perf_counter() - t0)
 
 
 # ---- vectors --------------------------------------------------------------------------------------------
@@ -269,29 +188,6 @@ async def angle_sweep(dut):
     await tb.run_vectors(vecs, rng, "angle sweep")
 
 
-class Ref:
-    """Per-clock reference of the handshake (module docstring), results from the model."""
-
-    def __init__(self, tb: LiteTB):
-        self.tb, self.st, self.latch, self.done, self.res = tb, 0, None, 0, (0,) * 5
-        self.starts = []
-
-    def outputs(self):
-        return (int(self.st != 0), self.done, *self.res)
-
-    def clock(self, cycle: int, start: int, abort: int, v: Vec):
-        self.done = 0
-        if abort:
-            self.st = 0
-        elif self.st == LATENCY - 1:
-            self.st, self.done, self.res = 0, 1, self.tb.expect(self.latch)
-        elif self.st:
-            self.st += 1
-        elif start:
-            self.st, self.latch = 1, v
-            self.starts.append(cycle)
-
-
 @cocotb.test()
 async def protocol(dut):
     """Every output on every clock against the reference: single starts with gaps, start_i held high with
@@ -308,30 +204,7 @@ async def protocol(dut):
         sched += [(0, 0, tb.junk(rng)) for _ in range(3)]
     sched += [(int(rng.random() < 0.05), int(rng.random() < 0.004), tb.legal(rng)) for _ in range(600)]
     sched += [(0, 0, tb.junk(rng)) for _ in range(LATENCY + 2)]
-    ref = Ref(tb)
-    trace = []
-    aborts = []
-    for cyc, (start, abort, v) in enumerate(sched):
-        got = tb.outputs()
-        assert got == ref.outputs(), (f"cycle {cyc}: RTL (busy, done, sector, Ca, Cb, Cc, sat) = {got}, "
-                                      f"ref {ref.outputs()}")
-        trace.append(got)
-        tb.drive(start, v)
-        dut.abort_i.value = abort
-        if abort:
-            aborts.append(cyc)
-        ref.clock(cyc, start, abort, v)
-        await FallingEdge(dut.clk)
-    assert len(ref.starts) >= 8
-    done_starts = [c for c in ref.starts if not any(c <= a < c + LATENCY for a in aborts)]
-    dones = [k for k, t in enumerate(trace) if t[1]]
-    assert dones == [c + LATENCY for c in done_starts if c + LATENCY < len(trace)]
-    for c in done_starts:
-        if c + LATENCY < len(trace):
-            assert all(trace[k][0] == 1 and trace[k][1] == 0 for k in range(c + 1, c + LATENCY))
-    tb.check_harness("protocol")
-    dut._log.info("protocol: %d clocks, %d starts (%d aborted), latency %d clocks", len(sched), len(ref.starts),
-                  len(ref.starts) - len(done_starts), LATENCY)
+    await tb.protocol(sched, 8)
 
 
 @cocotb.test()
@@ -354,6 +227,6 @@ BUILDS = {"cnt16": {"CntWidth": 16, "DtWidth": 10}, "cnt12": {"CntWidth": 12, "D
 def test_svpwm_duty_lite(sim, build):
     run_sim(sim, toplevel="tb_svpwm_duty_lite",
             sources=[REPO / "rtl/sine_rom.sv", REPO / "rtl/svpwm_sector_sel.sv", REPO / "rtl/svpwm_duty_lite.sv",
-                     Path(__file__).parent / "tb_svpwm_duty_lite.sv"],
+                     REPO / "tb/cocotb/calc_handshake_chk.sv", Path(__file__).parent / "tb_svpwm_duty_lite.sv"],
             test_module="test_svpwm_duty_lite", test_dir=Path(__file__).parent,
             parameters={**BUILDS[build], "Latency": fixed.LITE_DUTY_LATENCY}, build_name=build)

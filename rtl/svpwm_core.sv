@@ -668,11 +668,11 @@ module svpwm_core #(
     if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run));
     if (dt_q != $past(dt_q) || mp_q != $past(mp_q)) assert ($past(load));
   end
-  // a locked configuration does not change
   // the compact calculator reads period_next_q / dt_next_q + mp_next_q at its start: only valley updates
   // (the update mode stays "valley", so every computation starts from a valley sample)
   always_comb if (Compact && rst_ni) assert (upd_q == UpdValley);
   always_comb if (Compact && rst_ni && start_q) assert (ev_valley_q);
+  // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
     assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && mp_cfg_q == $past(mp_cfg_q)
             && pol_q == $past(pol_q) && safe_lo_q == $past(safe_lo_q) && cbc_q == $past(cbc_q));

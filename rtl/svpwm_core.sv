@@ -45,7 +45,7 @@ module svpwm_core #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = Compact ? 230 : 48,
+  parameter int MinPeriod  = svpwm_pkg::min_period(Compact),
   parameter int FreqMax    = (1 << (FreqWidth - 1)) - 1,
   parameter logic [1:0] GatePol = 2'b00
 ) (
@@ -101,14 +101,12 @@ module svpwm_core #(
 );
 
   // clocks from an input sample (inputs taken in the clock before) to the update point
-  localparam int LiteDutyLatency = 225;  // rtl/svpwm_duty_lite.sv Latency (model fixed.LITE_DUTY_LATENCY)
 `ifdef FORMAL
   localparam int SampleLead     = 2;    // formal/core.sby cuts the compute pipeline: no latency to cover
   localparam int MinPeriodFloor = 4;
 `else
-  localparam int SampleLead     = Compact ? LiteDutyLatency + 1   // serial calculator + load 1
-                                          : 39;                    // duty calculator 34 + minimum pulse 4 + load 1
-  localparam int MinPeriodFloor = SampleLead + 4;
+  localparam int SampleLead     = svpwm_pkg::sample_lead(Compact);        // calculator + load 1
+  localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Compact);
 `endif
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
     initial $fatal(1, "svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d", MinPeriodFloor,
@@ -368,79 +366,38 @@ module svpwm_core #(
     end
   end
 
-  // ---- minimum pulse (after the duty calculator, or inside the compact variant's serial calculator) --
+  // ---- the calculator: reference -> snapped compare values (every mode; the compact program: FREQ) ---
   logic [3*CntWidth-1:0] snap_cmp;
   logic                  snap_done;
 
-  if (Compact) begin : gen_lite
-    // one serial datapath: duty, hexagon clamp and minimum pulse in LiteDutyLatency clocks
-    svpwm_duty_lite #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_duty (
-      .clk_i    (clk_i),
-      .rst_ni   (rst_ni),
-      .start_i  (start_q && run),
-      .abort_i  (!run),
-      .sector_i (acc_sector),
-      .angle_i  (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),
-      .m_i      (m_q),
-      // read only at start_i; compact updates are valley updates only (start_q implies ev_valley_q), so
-      // these are calc_period_d / calc_thr_d at the start without the registers (removed by synthesis)
-      .period_i (period_next_q),
-      .thr_i    ({1'b0, dt_next_q} + {1'b0, mp_next_q}),
-      .busy_o   (duty_busy),
-      .done_o   (snap_done),
-      .sector_o (duty_sector),
-      .cmp_o    (snap_cmp),
-      .sat_o    (duty_sat)
-    );
-    assign duty_err = 1'b0;
-
-    // inputs of the modes the compact variant does not have (removed by synthesis)
-    logic unused_full;
-    assign unused_full = ^{mode_q, theta_q, v1_q, v2_q, vf_boost_q, vf_slope_q, vf_mmax_q, dpwm_q, fabs,
-                           calc_period_d, calc_thr_d, ev_valley_q, sync_en_i, upd_i, presc_i};
-  end else begin : gen_full
-    logic [3*CntWidth-1:0] duty_cmp;
-    logic                  duty_done;
-
-    svpwm_duty #(.CntWidth(CntWidth)) u_duty (
-      .clk_i      (clk_i),
-      .rst_ni     (rst_ni),
-      .start_i    (start_q && run),
-      .abort_i    (!run),
-      .mode_i     (mode_q),
-      .sector_i   (acc_sector),
-      .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held
-                                                                      // at 0 otherwise so simulators do not
-                                                                      // re-evaluate the calculator every clock
-      .theta_i    (theta_q),
-      .m_i        (m_q),
-      .fabs_i     (fabs),
-      .v1_i       (v1_q),
-      .v2_i       (v2_q),
-      .vf_boost_i (vf_boost_q),
-      .vf_slope_i (vf_slope_q),
-      .vf_mmax_i  (vf_mmax_q),
-      .dpwm_i     (dpwm_q),
-      .period_i   (calc_period_d),
-      .busy_o     (duty_busy),
-      .done_o     (duty_done),
-      .sector_o   (duty_sector),
-      .cmp_o      (duty_cmp),
-      .sat_o      (duty_sat),
-      .err_o      (duty_err)
-    );
-
-    svpwm_minpulse #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_minpulse (
-      .clk_i    (clk_i),
-      .rst_ni   (rst_ni),
-      .start_i  (duty_done),
-      .cmp_i    (duty_cmp),
-      .period_i (calc_period_q),
-      .thr_i    (calc_thr_q),
-      .done_o   (snap_done),
-      .cmp_o    (snap_cmp)
-    );
-  end
+  svpwm_calc #(.Compact(Compact), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .start_i    (start_q && run),
+    .abort_i    (!run),
+    .mode_i     (mode_q),
+    .sector_i   (acc_sector),
+    .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held at 0
+                                                                    // otherwise so simulators do not
+                                                                    // re-evaluate the calculator every clock
+    .theta_i    (theta_q),
+    .m_i        (m_q),
+    .fabs_i     (fabs),
+    .v1_i       (v1_q),
+    .v2_i       (v2_q),
+    .vf_boost_i (vf_boost_q),
+    .vf_slope_i (vf_slope_q),
+    .vf_mmax_i  (vf_mmax_q),
+    .dpwm_i     (dpwm_q),
+    .period_i   (calc_period_d),          // held from the start to done_o (calc_period_q)
+    .thr_i      (calc_thr_d),
+    .busy_o     (duty_busy),
+    .done_o     (snap_done),
+    .sector_o   (duty_sector),
+    .cmp_o      (snap_cmp),
+    .sat_o      (duty_sat),
+    .err_o      (duty_err)
+  );
 
   // ---- shadow and active registers ---------------------------------------------------------------
   logic [3*CntWidth-1:0] cmp_d, cmp_q;

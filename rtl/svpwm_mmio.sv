@@ -24,7 +24,7 @@
 module svpwm_mmio #(
   parameter bit         Compact   = 1'b0,
   parameter int         AddrWidth = 8,
-  parameter int         MinPeriod = Compact ? 230 : 48,
+  parameter int         MinPeriod = svpwm_pkg::min_period(Compact),
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
   parameter int         ClkHz     = 0,

@@ -103,7 +103,7 @@ def run_points(sim: str, points: list[dict], out_dir: Path, build_name: str = "d
     err = None
     try:
         simrun.run_sim(sim, toplevel="tb_svpwm_core",
-                       sources=sorted((REPO / "rtl").glob("*.sv")) + [HARNESS],
+                       sources=simrun.rtl_sources() + [HARNESS],
                        test_module="demo_runs", test_dir=TEST_DIR, build_name=build_name,
                        extra_env={"SVPWM_DEMO_POINTS": json.dumps(points), "SVPWM_DEMO_OUT": str(out_dir)})
     except pytest.fail.Exception as e:          # run_sim reports failures with pytest.fail

@@ -32,7 +32,7 @@ GOAL = {"fmax_mhz": 100.0, "lc": 450, "device": "up5k"}
 
 
 def sources() -> list[Path]:
-    return sorted((REPO / "rtl").glob("*.sv")) + [REPO / "fpga/ice40/bench/svpwm_bench_top.sv"]
+    return flow.rtl_sources() + [REPO / "fpga/ice40/bench/svpwm_bench_top.sv"]
 
 
 def wrapper_cells(params: dict[str, str]) -> int:

@@ -43,7 +43,13 @@ BOARDS = {  # board -> device (package: DEVICES); top fpga/ice40/<board>/<board>
 
 def system_sources() -> list[Path]:
     """Sources of svpwm_ice40_sys (no vendor primitives): the core's RTL and the common board parts."""
-    return sorted((REPO / "rtl").glob("*.sv")) + sorted((ICE40 / "common").glob("*.sv"))
+    return rtl_sources() + sorted((ICE40 / "common").glob("*.sv"))
+
+
+def rtl_sources() -> list[Path]:
+    """The core's RTL, packages (*_pkg.sv) first: Yosys reads a package before the files that import it."""
+    files = sorted((REPO / "rtl").glob("*.sv"))
+    return sorted(files, key=lambda f: not f.name.endswith("_pkg.sv"))
 
 
 def board_sources(board: str) -> list[Path]:

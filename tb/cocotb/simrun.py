@@ -50,6 +50,12 @@ VERILATOR_TIMING_ARGS = [
 ]
 
 
+def rtl_sources(rtl_dir: Path | None = None) -> list[Path]:
+    """Every file of rtl/ in an order all three tools accept: the packages (*_pkg.sv) first."""
+    files = sorted(Path(rtl_dir or REPO / "rtl").glob("*.sv"))
+    return [f for f in files if f.name.endswith("_pkg.sv")] + [f for f in files if not f.name.endswith("_pkg.sv")]
+
+
 def sims_to_run() -> list[str]:
     """Simulators selected by $SVPWM_SIMS (comma separated), default both."""
     raw = os.environ.get("SVPWM_SIMS", "verilator,icarus")

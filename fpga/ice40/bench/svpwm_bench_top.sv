@@ -14,7 +14,7 @@ module svpwm_bench_top #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = Compact ? 230 : 48
+  parameter int MinPeriod  = svpwm_pkg::min_period(Compact)
 ) (
   input  wire        clk_i,
   input  wire        rst_ni,

@@ -437,8 +437,8 @@ async def period_beyond_the_carrier(dut):
 
 @pytest.mark.parametrize("compact", [0, 1])
 def test_ice40_uart(sim, compact):
-    from simrun import run_sim
-    srcs = (sorted(Path(os.environ.get("ICE40_RTL_DIR", REPO / "rtl")).glob("*.sv"))
+    from simrun import rtl_sources, run_sim
+    srcs = (rtl_sources(Path(os.environ.get("ICE40_RTL_DIR", REPO / "rtl")))
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",

@@ -206,9 +206,9 @@ import pytest  # noqa: E402
 
 @pytest.mark.parametrize("bus", ["axil", "wb", "wbc"])
 def test_svpwm_bus(sim, bus):
-    from simrun import REPO, run_sim
+    from simrun import REPO, rtl_sources, run_sim
 
-    core = sorted(p for p in (REPO / "rtl").glob("*.sv"))
+    core = rtl_sources()
     testcase = None
     run_sim(sim, toplevel="tb_svpwm_bus", sources=core + [HERE / "tb_svpwm_bus.sv"],
             test_module="test_svpwm_bus", test_dir=HERE,

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import cocotb
 
-from simrun import REPO, run_sim
+from simrun import REPO, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import Inputs
@@ -171,7 +171,7 @@ async def full_only_inputs(dut):
 def test_svpwm_core(sim):
     # Icarus runs every operating point too (they are short enough), Verilator is ~20x faster.
     run_sim(sim, toplevel="tb_svpwm_core",
-            sources=sorted((REPO / "rtl").glob("*.sv")) + [Path(__file__).parent / "tb_svpwm_core.sv"],
+            sources=rtl_sources() + [Path(__file__).parent / "tb_svpwm_core.sv"],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="default",
             testcase=os.environ.get("SVPWM_TESTCASE") or None)
 
@@ -179,7 +179,7 @@ def test_svpwm_core(sim):
 def test_svpwm_core_compact(sim):
     # the compact variant: the same tests, the same model with compact=True
     run_sim(sim, toplevel="tb_svpwm_core",
-            sources=sorted((REPO / "rtl").glob("*.sv")) + [Path(__file__).parent / "tb_svpwm_core.sv"],
+            sources=rtl_sources() + [Path(__file__).parent / "tb_svpwm_core.sv"],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
             parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
             testcase=os.environ.get("SVPWM_TESTCASE") or None)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import cocotb
 
-from simrun import REPO, run_sim
+from simrun import REPO, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
@@ -216,7 +216,7 @@ async def invalid_mode(dut):
 
 def test_svpwm_modes(sim):
     run_sim(sim, toplevel="tb_svpwm_core",
-            sources=sorted((REPO / "rtl").glob("*.sv")) + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
+            sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
             test_module="test_svpwm_modes", test_dir=Path(__file__).parent, build_name="modes",
             extra_env={"SVPWM_SIM_NAME": sim},
             testcase=os.environ.get("SVPWM_TESTCASE") or None)

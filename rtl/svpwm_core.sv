@@ -389,8 +389,11 @@ module svpwm_core #(
     .vf_slope_i (vf_slope_q),
     .vf_mmax_i  (vf_mmax_q),
     .dpwm_i     (dpwm_q),
-    .period_i   (calc_period_d),          // held from the start to done_o (calc_period_q)
-    .thr_i      (calc_thr_d),
+    // the compact variant's updates are valley updates only (start_q implies ev_valley_q) and its
+    // calculator takes period and threshold at start_i, so it reads the next-period registers directly
+    // (calc_period_q / calc_thr_q are then removed by synthesis: 80 LC on the HX1K)
+    .period_i   (Compact ? period_next_q : calc_period_d),   // full: held start..done (calc_period_q)
+    .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_d),
     .busy_o     (duty_busy),
     .done_o     (snap_done),
     .sector_o   (duty_sector),

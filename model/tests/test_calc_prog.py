@@ -1,0 +1,118 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The calculator's program (model/svpwm_model/calc_prog.py), run on the clock-exact machine model, against the
+specification: calc_prog.expect = fixed.modulate + fixed.snap_min_pulse per phase, exact (==).
+
+Programs: the full core's (every mode, DSP multiplier), the compact core's (FREQ, serial multiplier) and the full
+program on the serial multiplier (a device without a DSP). Every run starts from junk machine state (registers,
+flags, the RAM's working words), as the RTL does after an earlier or aborted computation.
+"""
+from __future__ import annotations
+
+import math
+import random
+
+import pytest
+
+from svpwm_model import calc_prog as cp
+from svpwm_model import fixed
+
+PROGRAMS = [(False, True), (True, False), (False, False)]      # (compact, dsp)
+IDS = ["full-dsp", "compact-serial", "full-serial"]
+M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))          # 0x93CD, the hexagon's vertex
+PERIODS = (8, 48, 100, 1536, 4095, 65535)
+ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
+MS = (0, 1, 0x4000, 0x8000, M_VERTEX, M_VERTEX + 1, 0xFFFF)
+VS = (-32768, -32767, -1, 0, 1, 0x3FFF, 32767)
+
+
+def _thrs(P: int) -> tuple[int, ...]:
+    return tuple(sorted({0, 1, 2, 5, min(P // 2, 2047), min(P // 2 - 1, 2047) if P > 2 else 0}))
+
+
+def _vec(rng: random.Random, compact: bool) -> dict:
+    P = rng.choice(PERIODS + (rng.randint(8, 65535),) * 4)
+    thr = min(rng.choice([0, 1, 2, 5, rng.randint(0, P // 2), P // 2]), P // 2, 2047)
+    d = dict(period=P, thr=thr, sector=rng.randint(0, 5), a16=rng.choice(ANGLES + (rng.randint(0, 65535),) * 3),
+             m=rng.choice(MS + (rng.randint(0, 65535),) * 3))
+    if not compact:
+        f = rng.randint(-(1 << (fixed.FREQ_WIDTH - 1)) + 1, (1 << (fixed.FREQ_WIDTH - 1)) - 1)
+        d.update(mode=rng.choice(range(8)), freq=f, fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
+                 theta=rng.randint(0, 65535), v1=rng.choice(VS + (rng.randint(-32768, 32767),) * 3),
+                 v2=rng.choice(VS + (rng.randint(-32768, 32767),) * 3), vf_boost=rng.randint(0, 65535),
+                 vf_slope=rng.randint(0, 65535), vf_mmax=rng.randint(0, 65535), dpwm=rng.randint(0, 3))
+    return d
+
+
+def _directed(compact: bool):
+    """Corners: every sector x angle x m x (P, thr) corner in FREQ mode; for the full program every mode x DPWM
+    setting with corner references (AB / DQ components, theta at the sector ends, V/f saturating)."""
+    for sector in range(6):
+        for a16 in ANGLES:
+            for m in MS:
+                for P in (48, 65535):
+                    for thr in _thrs(P)[::2]:
+                        yield dict(period=P, thr=thr, sector=sector, a16=a16, m=m)
+    if compact:
+        return
+    for mode in range(8):
+        for dpwm in range(4):
+            for v1 in VS:
+                for v2 in VS[::2]:
+                    for theta in (0, 0x2AAA, 0x2AAB, 0xFFFF):
+                        f = max(v2 * 256, -(1 << 23) + 1)          # |f| <= FreqMax, as the core clamps it
+                        yield dict(period=1536, thr=5, sector=theta % 6, a16=theta, m=(v1 & 0xFFFF),
+                                   mode=mode, dpwm=dpwm, v1=v1, v2=v2, theta=theta, freq=f,
+                                   fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
+                                   vf_boost=0x1000, vf_slope=0xFFFF if v1 < 0 else 0x0100, vf_mmax=0xFFFF)
+
+
+@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
+def test_directed(compact, dsp):
+    mach = cp.Machine(cp.program(compact, dsp))
+    junk = random.Random(1)
+    every = 4 if dsp == compact else 1                         # full program on the serial unit: every 4th
+    n = 0
+    for k, v in enumerate(_directed(compact)):
+        if k % every == 0:
+            assert mach.run(v, junk=junk) == cp.expect(v, compact), v
+            n += 1
+    assert n >= 1000
+
+
+@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
+def test_random(compact, dsp):
+    mach = cp.Machine(cp.program(compact, dsp))
+    rng = random.Random(2024 + 7 * compact + dsp)
+    for _ in range(3000 if dsp != compact else 1000):
+        v = _vec(rng, compact)
+        assert mach.run(v, junk=rng) == cp.expect(v, compact), v
+
+
+@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
+def test_words(compact, dsp):
+    """The packed word decodes to the logical fields the program was built with; it fits three 16-bit block
+    RAM words; the shipped programs are at most 256 words deep; the latency bounds of the issue (MinPeriod <= 256)."""
+    prog = cp.program(compact, dsp)
+    assert cp.WORD_BITS <= 48
+    names = [n for n, _ in cp.LOGICAL]
+    for k, (w, word) in enumerate(zip(prog.words(), prog.encode())):
+        assert 0 <= word < (1 << cp.WORD_BITS)
+        got = cp.decode(word)
+        for n in names:
+            shared = {"wa": "we", "fidx": "fset", "ci": "rc", "bci": "binv"}
+            if n in shared and not w.get(shared[n]):
+                continue                                       # a shared field's bits belong to the other use
+            assert got[n] == w.get(n, 0), (k, n)
+    assert len(prog.steps) <= (512 if dsp == compact else 256)   # the shipped programs: one 256-word depth
+    if dsp:
+        assert cp.calc_latency(compact, dsp) + 1 + 4 <= 256
+
+
+def test_misuse_is_refused():
+    """The builder's packing refuses fields that share bits."""
+    with pytest.raises(AssertionError):
+        cp.pack(dict(we=1, wa=3, fset=1, fidx=3))
+    with pytest.raises(AssertionError):
+        cp.pack(dict(qsh=1, rsel=cp.ROM_I))
+    with pytest.raises(AssertionError):
+        cp.pack(dict(asrc=cp.AS_IN, isel=1, ra=5))

@@ -1,24 +1,38 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_calc: the core's one calculator -- a reference in any input mode -> sector, dwell times, hexagon
 // clamp, compare values (AVR495 Table 4-3), zero-vector placement and the minimum-pulse rule; exactly
-// model/svpwm_model/fixed.py: snap_min_pulse(modulate(...)).
-// (TRANSITIONAL: this wraps the old svpwm_duty + svpwm_minpulse / svpwm_duty_lite behind the final ports.)
-// Parameters: Compact - 1: FREQ mode, continuous SVPWM only (mode_i, theta_i, v1_i, v2_i, vf_*, dpwm_i
-//             ignored); CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1 bits.
-// Latency: svpwm_pkg::calc_latency(Compact) clocks from start_i to done_o. Restrictions: sector_i and
-// angle_i are read at start_i only; every other input must hold from start_i until done_o (the core's
-// sampled registers do); start_i is ignored while busy_o; period_i >= 2 thr_i.
+// model/svpwm_model/fixed.py: snap_min_pulse(modulate(...)) per phase.
+// A microcoded accumulator machine (model/svpwm_model/calc_prog.py generates its program and models it clock
+// by clock; docs/design.md): one adder ACC <- A + B + cin, a 32-word operand RAM (svpwm_calc_ram), the sine
+// ROM, one 16 x 16 multiplier and a microcode ROM (svpwm_ucode) addressed by a step counter. Per clock:
+//   A = aen ? (ash ? ACC << 1 : ACC) : 0;  B = (RAM word or AUX, chosen by the word before) ^ {binv}
+//   ACC <- A + B + cin (or held: a compare); RAM[dst] <- ACC; flag[dst] <- sign; Q <- {Q, !sign};
+//   MA / MB <- sat16(B, ACC or the angle fraction); P <- MA * MB (registered inputs and output: the
+//   UP5K's SB_MAC16 with its registers) or, with Dsp = 0, a 16-clock serial shift-add unit.
+// TRANSITIONAL: with Compact = 1 this module still instantiates the compact core's own serial datapath
+// (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency): the engine's compact program (FREQ only,
+// 216 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
+// Parameters: Compact - 1: FREQ mode only (mode_i, theta_i, v1_i, v2_i, vf_*, dpwm_i, fabs_i
+//             ignored); Dsp - 1: the registered multiplier, 0: the serial unit (default: the core's choice,
+//             svpwm_pkg::core_dsp); CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1
+//             bits.
+// Latency: svpwm_pkg::core_latency(Compact) clocks from start_i to done_o (Compact = 0:
+// svpwm_pkg::calc_latency(0, Dsp)).
+// Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
+// until done_o (the core's sampled registers do); start_i is ignored while busy_o; sector_o, cmp_o, sat_o
+// and err_o are the results in the done_o clock only (they change while busy_o); period_i >= 2 thr_i.
 `default_nettype none
 
 module svpwm_calc #(
   parameter bit Compact  = 1'b0,
+  parameter bit Dsp      = svpwm_pkg::core_dsp(Compact),
   parameter int CntWidth = 16,
   parameter int DtWidth  = 10
 ) (
   input  logic                  clk_i,        // core clock
   input  logic                  rst_ni,       // asynchronous reset, active low
   input  logic                  start_i,      // start a computation (ignored while busy_o)
-  input  logic                  abort_i,      // back to idle, no done_o, the results hold
+  input  logic                  abort_i,      // back to idle, no done_o
   input  logic [2:0]            mode_i,       // input mode (svpwm_core)
   input  logic [2:0]            sector_i,     // phase accumulator: sector 0..5 (FREQ, VF), at start_i
   input  logic [15:0]           angle_i,      // phase accumulator: theta' / 60 deg, UQ0.16, at start_i
@@ -40,7 +54,6 @@ module svpwm_calc #(
   output logic                  sat_o,        // the reference was clamped to the hexagon
   output logic                  err_o         // invalid mode: zero vector
 );
-
   if (Compact) begin : gen_lite
     svpwm_duty_lite #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_duty (
       .clk_i    (clk_i),
@@ -61,55 +74,371 @@ module svpwm_calc #(
     assign err_o = 1'b0;
 
     logic unused_full;
-    assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i};
-  end else begin : gen_full
-    logic [3*CntWidth-1:0] duty_cmp;
-    logic                  duty_done, duty_busy, snap_busy_q;
+    assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp};
+  end else begin : gen_engine
+    localparam int W       = svpwm_pkg::acc_width(CntWidth);
+    localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
+    localparam logic [svpwm_pkg::UcBits-1:0] Word0 = Compact ? (Dsp ? svpwm_pkg::UcCompactDspWord0 : svpwm_pkg::UcCompactSerialWord0)
+                                                  : (Dsp ? svpwm_pkg::UcFullDspWord0 : svpwm_pkg::UcFullSerialWord0);
 
-    svpwm_duty #(.CntWidth(CntWidth)) u_duty (
-      .clk_i      (clk_i),
-      .rst_ni     (rst_ni),
-      .start_i    (start_i && !abort_i),
-      .abort_i    (abort_i),
-      .mode_i     (mode_i),
-      .sector_i   (sector_i),
-      .angle_i    (angle_i),
-      .theta_i    (theta_i),
-      .m_i        (m_i),
-      .fabs_i     (fabs_i),
-      .v1_i       (v1_i),
-      .v2_i       (v2_i),
-      .vf_boost_i (vf_boost_i),
-      .vf_slope_i (vf_slope_i),
-      .vf_mmax_i  (vf_mmax_i),
-      .dpwm_i     (dpwm_i),
-      .period_i   (period_i),
-      .busy_o     (duty_busy),
-      .done_o     (duty_done),
-      .sector_o   (sector_o),
-      .cmp_o      (duty_cmp),
-      .sat_o      (sat_o),
-      .err_o      (err_o)
+    // ---- step counter and microcode ------------------------------------------------------------------
+    logic [8:0]        pc_d, pc_q;
+    logic              busy;
+    logic [svpwm_pkg::UcBits-1:0] rom_word, word;
+
+    assign busy = (pc_q != 9'd0);
+    always_comb begin
+      pc_d = 9'd0;
+      if (abort_i)                        pc_d = 9'd0;
+      else if (busy)                      pc_d = (pc_q == 9'(Latency - 1)) ? 9'd0 : pc_q + 9'd1;
+      else if (start_i)                   pc_d = 9'd1;
+    end
+
+    svpwm_ucode #(.Compact(Compact), .Dsp(Dsp)) u_ucode (
+      .clk_i  (clk_i),
+      .addr_i (pc_d),
+      .word_o (rom_word)
+    );
+    // idle: the idle word (step 1's operand selection) whatever the ROM register holds (e.g. after reset)
+    assign word = busy ? rom_word : Word0;
+
+    // ---- decode: own fields (acting in this step, only while busy) ------------------------------------
+    logic       aen, ash, hold, we, fset, qsh, ald, mla, mas, mlb, done;
+    logic [4:0] dst;
+    logic [2:0] pred, rsel;
+    logic [1:0] mbs, sec_op, out_op;
+    logic [4:0] mop;
+    logic [8:0] misc;
+
+    assign aen  = word[svpwm_pkg::UcAen];
+    assign ash  = word[svpwm_pkg::UcAsh];
+    assign hold = word[svpwm_pkg::UcHold];
+    assign dst  = word[svpwm_pkg::UcDst +: svpwm_pkg::UcDstW];
+    assign pred = word[svpwm_pkg::UcPred +: svpwm_pkg::UcPredW];
+    assign mop  = svpwm_pkg::uc_mop(word[svpwm_pkg::UcMop +: svpwm_pkg::UcMopW]);
+    assign misc = svpwm_pkg::uc_misc(word[svpwm_pkg::UcMisc +: svpwm_pkg::UcMiscW]);
+    assign we   = busy && (word[svpwm_pkg::UcWr +: svpwm_pkg::UcWrW] == 2'(svpwm_pkg::WrRam));
+    assign fset = busy && (word[svpwm_pkg::UcWr +: svpwm_pkg::UcWrW] == 2'(svpwm_pkg::WrFlag));
+    assign {mla, mas, mlb, mbs} = busy ? mop : 5'd0;
+    assign {qsh, ald, sec_op, rsel, out_op} = busy ? misc : 9'd0;
+    assign done = busy && word[svpwm_pkg::UcDone];
+
+    // next fields: the operand of the next step
+    logic [2:0] src;
+    logic [4:0] opnd, cond;
+    logic [2:0] rc;
+    logic [1:0] binv_sel, cin_sel;
+
+    assign src      = word[svpwm_pkg::UcSrc +: svpwm_pkg::UcSrcW];
+    assign opnd     = word[svpwm_pkg::UcOpnd +: svpwm_pkg::UcOpndW];
+    assign rc       = word[svpwm_pkg::UcRc +: svpwm_pkg::UcRcW];
+    assign cond     = word[svpwm_pkg::UcCond +: svpwm_pkg::UcCondW];
+    assign binv_sel = word[svpwm_pkg::UcBinv +: svpwm_pkg::UcBinvW];
+    assign cin_sel  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
+
+    // ---- mode and conditions ---------------------------------------------------------------------------
+    logic [2:0] mode;
+    logic [1:0] dpwm;
+    logic       is_vf, is_ab, is_dq, is_th, is_err, pred_ok;
+
+    assign mode   = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
+    assign dpwm   = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
+    assign is_vf  = (mode == 3'(svpwm_pkg::ModeVf));
+    assign is_ab  = (mode == 3'(svpwm_pkg::ModeAb));
+    assign is_dq  = (mode == 3'(svpwm_pkg::ModeDq));
+    assign is_th  = (mode == 3'(svpwm_pkg::ModePolar)) || is_dq;
+    assign is_err = (mode > 3'(svpwm_pkg::ModeDq));
+
+    always_comb begin
+      unique case (pred)
+        3'(svpwm_pkg::PredTh): pred_ok = is_th;
+        3'(svpwm_pkg::PredAb): pred_ok = is_ab;
+        3'(svpwm_pkg::PredDq): pred_ok = is_dq;
+        3'(svpwm_pkg::PredXy): pred_ok = is_ab || is_dq;
+        default:    pred_ok = 1'b1;
+      endcase
+    end
+
+    logic [svpwm_pkg::CalcFlags-1:0] flags_d, flags_q;
+    logic [2:0]           sec_d, sec_q;
+    logic [5:0]           sel;
+    logic                 midneg;
+    logic [31:0]          c;
+
+    svpwm_sector_sel u_sel (
+      .sector_i (sec_q),
+      .sel_o    (sel)
+    );
+    assign midneg = (sel[1:0] == 2'd3) || (sel[3:2] == 2'd3) || (sel[5:4] == 2'd3);
+
+    always_comb begin
+      c                 = '0;
+      c[svpwm_pkg::CalcFlags-1:0]  = flags_q;
+      c[svpwm_pkg::CVf]            = is_vf;
+      c[svpwm_pkg::CXy]            = is_ab || is_dq;
+      c[svpwm_pkg::CErr]           = is_err;
+      c[svpwm_pkg::CMidsgn]        = midneg ^ flags_q[svpwm_pkg::FFirst];
+      c[svpwm_pkg::CDq]            = is_dq;
+      c[svpwm_pkg::CNv1n]          = !flags_q[svpwm_pkg::FV1n];
+      c[svpwm_pkg::CNhalf]         = !flags_q[svpwm_pkg::FHalf];
+    end
+
+    // sector of the X, Y, Z signs (fixed.xyz_sector): q = (X, Z, -Y, -X, -Z, Y), the first s with
+    // q_s >= 0 > q_s+1 (none: the zero vector, sector 0)
+    logic [5:0] neg;
+    logic [2:0] sw, sw_mod3, sw1_mod3;
+    assign neg = {flags_q[svpwm_pkg::FNy], flags_q[svpwm_pkg::FPz], flags_q[svpwm_pkg::FPx], flags_q[svpwm_pkg::FPy], flags_q[svpwm_pkg::FNz], flags_q[svpwm_pkg::FNx]};
+    always_comb begin
+      sw = 3'd0;
+      for (int s = 5; s >= 0; s--) begin
+        if (!neg[s] && neg[(s + 1) % 6]) sw = 3'(s);
+      end
+    end
+    always_comb begin
+      unique case (sw)
+        3'd0, 3'd3: begin sw_mod3 = 3'd0; sw1_mod3 = 3'd1; end
+        3'd1, 3'd4: begin sw_mod3 = 3'd1; sw1_mod3 = 3'd2; end
+        default:    begin sw_mod3 = 3'd2; sw1_mod3 = 3'd0; end
+      endcase
+    end
+
+    // minimum-pulse result word in {c, 0, thr, P, P - hthr} (fixed.snap_min_pulse)
+    logic [2:0] snap;
+    always_comb begin
+      if (flags_q[svpwm_pkg::FS1])       snap = flags_q[svpwm_pkg::FS2] ? 3'd1 : 3'd2;
+      else if (!flags_q[svpwm_pkg::FS3]) snap = !flags_q[svpwm_pkg::FS4] ? 3'd3 : 3'd4;
+      else                    snap = 3'd0;
+    end
+
+    // ---- the adder -----------------------------------------------------------------------------------
+    logic [W-1:0] acc_d, acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
+    logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign;
+
+    assign a_val = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
+    assign b_val = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
+    assign sum   = a_val + b_val + W'(cin_q);
+    assign sign  = sum[W-1];
+    assign acc_d = (busy && !hold) ? sum : acc_q;
+
+    // ---- operand RAM ---------------------------------------------------------------------------------
+    logic [4:0] raddr, rbits;
+    always_comb begin
+      unique case (rc)
+        3'(svpwm_pkg::RcC):     rbits = {4'd0, c[cond]};
+        3'(svpwm_pkg::RcSw):    rbits = {2'd0, sw_mod3};
+        3'(svpwm_pkg::RcSw1):   rbits = {2'd0, sw1_mod3};
+        3'(svpwm_pkg::RcSnap):  rbits = {2'd0, snap};
+        3'(svpwm_pkg::RcDpwm):  rbits = {3'd0, dpwm == 2'(svpwm_pkg::DpwmOff),
+                              (dpwm == 2'(svpwm_pkg::DpwmMax)) || ((dpwm == 2'(svpwm_pkg::Dpwm60)) && !flags_q[svpwm_pkg::FDp60])};
+        3'(svpwm_pkg::RcMerge): rbits = {3'd0, is_err, is_ab || is_dq};
+        default:     rbits = 5'd0;
+      endcase
+    end
+    assign raddr = opnd | rbits;
+
+    svpwm_calc_ram #(.Width(W)) u_ram (
+      .clk_i   (clk_i),
+      .we_i    (we && pred_ok),
+      .waddr_i (dst),
+      .wdata_i (acc_q),
+      .raddr_i (raddr),
+      .rdata_o (ram_q)
     );
 
-    svpwm_minpulse #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_minpulse (
-      .clk_i    (clk_i),
-      .rst_ni   (rst_ni),
-      .start_i  (duty_done),
-      .cmp_i    (duty_cmp),
-      .period_i (period_i),
-      .thr_i    (thr_i),
-      .done_o   (done_o),
-      .cmp_o    (cmp_o)
+    // ---- sine ROM: address from ANG[15:8] = i ---------------------------------------------------------
+    logic [15:0] ang_d, ang_q, rom_q;
+    logic [8:0]  rom_addr;
+    logic [7:0]  ang_i;
+    assign ang_i = ang_q[15:8];
+    always_comb begin
+      unique case (rsel)
+        3'(svpwm_pkg::RomI):  rom_addr = {1'b0, ang_i};
+        3'(svpwm_pkg::RomI1): rom_addr = {1'b0, ang_i} + 9'd1;
+        3'(svpwm_pkg::RomN):  rom_addr = 9'd256 - {1'b0, ang_i};
+        3'(svpwm_pkg::RomN1): rom_addr = 9'd255 - {1'b0, ang_i};
+        default:   rom_addr = 9'd0;
+      endcase
+    end
+
+    sine_rom u_rom (
+      .clk_i  (clk_i),
+      .addr_i (rom_addr),
+      .data_o (rom_q)
     );
+
+    // ---- multiplier ------------------------------------------------------------------------------------
+    logic [15:0] ma_d, mb_d;
+    logic [31:0] p;
+
+    // a multiplier operand: 2^16 (a dwell time of the whole period) is capped at 0xFFFF (fixed.T_CAP)
+    function automatic logic [15:0] sat16(input logic [16:0] x);
+      sat16 = x[16] ? 16'hFFFF : x[15:0];
+    endfunction
+
+    always_comb begin
+      ma_d = sat16(mas ? acc_q[16:0] : b_val[16:0]);
+      unique case (mbs)
+        2'(svpwm_pkg::MbFr):  mb_d = {8'd0, ang_q[7:0]};
+        2'(svpwm_pkg::MbAcc): mb_d = sat16(acc_q[16:0]);
+        default:   mb_d = sat16(b_val[16:0]);
+      endcase
+    end
+
+    svpwm_mul #(.Dsp(Dsp)) u_mul (
+      .clk_i  (clk_i),
+      .rst_ni (rst_ni),
+      .la_i   (mla),
+      .a_i    (ma_d),
+      .lb_i   (mlb),
+      .b_i    (mb_d),
+      .p_o    (p)
+    );
+
+    // ---- AUX: the next step's non-RAM operand -------------------------------------------------------------
+    logic [15:0] in_sel;
+    logic        in_signed;
+    always_comb begin
+      in_sel    = 16'd0;
+      in_signed = 1'b0;
+      unique case (opnd[3:0])
+        4'(svpwm_pkg::InM):      in_sel = m_i;
+        4'(svpwm_pkg::InTheta):  in_sel = Compact ? 16'd0 : theta_i;
+        4'(svpwm_pkg::InV1):     begin in_sel = Compact ? 16'd0 : v1_i; in_signed = !Compact; end
+        4'(svpwm_pkg::InV2):     begin in_sel = Compact ? 16'd0 : v2_i; in_signed = !Compact; end
+        4'(svpwm_pkg::InBoost):  in_sel = Compact ? 16'd0 : vf_boost_i;
+        4'(svpwm_pkg::InSlope):  in_sel = Compact ? 16'd0 : vf_slope_i;
+        4'(svpwm_pkg::InMmax):   in_sel = Compact ? 16'd0 : vf_mmax_i;
+        4'(svpwm_pkg::InFabs):   in_sel = Compact ? 16'd0 : fabs_i;
+        4'(svpwm_pkg::InPeriod): in_sel = 16'(period_i);
+        4'(svpwm_pkg::InThr):    in_sel = 16'(thr_i);
+        default:      in_sel = 16'd0;
+      endcase
+    end
+
+    logic [31:0] p_sh;
+    logic        rbit;
+    always_comb begin
+      unique case (opnd[1:0])
+        2'd0:    begin p_sh = p >> svpwm_pkg::Psh0; rbit = p[svpwm_pkg::Psh0 - 1]; end
+        2'd1:    begin p_sh = p >> svpwm_pkg::Psh1; rbit = p[svpwm_pkg::Psh1 - 1]; end
+        2'd2:    begin p_sh = p >> svpwm_pkg::Psh2; rbit = p[svpwm_pkg::Psh2 - 1]; end
+        default: begin p_sh = p;         rbit = 1'b0;       end
+      endcase
+    end
+
+    logic signed [W-1:0] acc_s;
+    logic [15:0]         q_d, q_q;
+    assign acc_s = acc_q;
+    always_comb begin
+      unique case (src)
+        3'(svpwm_pkg::AsRom):  aux_d = W'(rom_q);
+        3'(svpwm_pkg::AsProd): aux_d = W'(p_sh);
+        3'(svpwm_pkg::AsIn):   aux_d = in_signed ? W'($signed(in_sel)) : W'(in_sel);
+        3'(svpwm_pkg::AsShr9): aux_d = W'(acc_s >>> 9);
+        3'(svpwm_pkg::AsShr1): aux_d = W'(acc_s >>> 1);
+        3'(svpwm_pkg::AsQ):    aux_d = W'(q_q);
+        3'(svpwm_pkg::AsAng):  aux_d = W'(ang_q);
+        default:    aux_d = '0;
+      endcase
+    end
+
+    always_comb begin
+      unique case (binv_sel)
+        2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
+        2'(svpwm_pkg::BinvC):     binv_d = c[cond];
+        2'(svpwm_pkg::BinvNsign): binv_d = !sign;
+        default:       binv_d = 1'b0;
+      endcase
+      unique case (cin_sel)
+        2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
+        2'(svpwm_pkg::CinBinv): cin_d = binv_d;
+        2'(svpwm_pkg::CinRnd):  cin_d = ((src == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
+        default:     cin_d = 1'b0;
+      endcase
+    end
+
+    // ---- flags, Q, angle, sector, compare values -----------------------------------------------------
+    logic [3*CntWidth-1:0] cmp_d, cmp_q;
+    logic                  done_q;
+
+    always_comb begin
+      flags_d = flags_q;
+      if (fset) flags_d[dst] = sign;
+    end
+    assign q_d = qsh ? {q_q[14:0], !sign} : q_q;
+
+    // DQ: the sector of X, Y, Z counts from theta's sector: (sw + sector) mod 6
+    logic [3:0] sec_sum;
+    logic [2:0] sec_dq;
+    assign sec_sum = {1'b0, sw} + {1'b0, sec_q};
+    assign sec_dq  = (sec_sum >= 4'd6) ? 3'(sec_sum - 4'd6) : sec_sum[2:0];
+
+    always_comb begin
+      ang_d = ang_q;
+      sec_d = sec_q;
+      if (!busy && start_i) begin
+        ang_d = angle_i;
+        sec_d = sector_i;
+      end
+      if (ald && pred_ok) ang_d = acc_q[15:0];
+      unique case (sec_op)
+        2'(svpwm_pkg::SecTheta): if (pred_ok) sec_d = acc_q[18:16];
+        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw;
+        2'(svpwm_pkg::SecErr):   if (is_err) sec_d = 3'd0;
+        default:      ;
+      endcase
+    end
+
+    // out: the phases whose Table 4-3 code is of this class take ACC (0: the highest, 1: the lowest, 2 / 3:
+    // the middle compare value)
+    always_comb begin
+      cmp_d = cmp_q;
+      for (int ph = 0; ph < 3; ph++) begin
+        logic [1:0] cls;
+        cls = (sel[2*ph +: 2] == 2'd0) ? 2'(svpwm_pkg::OutHi) : (sel[2*ph +: 2] == 2'd1) ? 2'(svpwm_pkg::OutLo) : 2'(svpwm_pkg::OutMid);
+        if (out_op != 2'(svpwm_pkg::OutNone) && out_op == cls) cmp_d[ph*CntWidth +: CntWidth] = acc_q[CntWidth-1:0];
+      end
+    end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni)        snap_busy_q <= 1'b0;
-      else if (abort_i)   snap_busy_q <= 1'b0;
-      else if (duty_done) snap_busy_q <= 1'b1;
-      else if (done_o)    snap_busy_q <= 1'b0;
+      if (!rst_ni) begin
+        pc_q    <= '0;
+        acc_q   <= '0;
+        aux_q   <= '0;
+        b_ram_q <= 1'b0;
+        binv_q  <= 1'b0;
+        cin_q   <= 1'b0;
+        flags_q <= '0;
+        q_q     <= '0;
+        ang_q   <= '0;
+        sec_q   <= '0;
+        cmp_q   <= '0;
+        done_q  <= 1'b0;
+      end else begin
+        pc_q    <= pc_d;
+        acc_q   <= acc_d;
+        aux_q   <= aux_d;
+        b_ram_q <= (src == 3'(svpwm_pkg::AsNone));
+        binv_q  <= binv_d;
+        cin_q   <= cin_d;
+        flags_q <= flags_d;
+        q_q     <= q_d;
+        ang_q   <= ang_d;
+        sec_q   <= sec_d;
+        cmp_q   <= cmp_d;
+        done_q  <= done && !abort_i;
+      end
     end
-    assign busy_o = duty_busy || snap_busy_q;
+
+    assign busy_o   = busy;
+    assign done_o   = done_q;
+    assign sector_o = sec_q;
+    assign cmp_o    = cmp_q;
+    assign sat_o    = !flags_q[svpwm_pkg::FSatn];
+    assign err_o    = is_err;
+
+    logic unused;
+    assign unused = ^{p_sh};
   end
 
 endmodule

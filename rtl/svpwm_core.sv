@@ -1,21 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_core: space-vector PWM core -- frequency + modulation index in, six dead-time-protected gates out.
-// Pipeline: phase accumulator (sector + theta') -> sine ROM (0..60 deg) -> multiplier duty calculator
+// Pipeline: phase accumulator (sector + theta') -> the calculator (svpwm_calc: a microcoded datapath on
+// one multiplier with the sine ROM (0..60 deg): every input mode, hexagon clamp, DPWM, minimum pulse)
 // -> up/down carrier -> three comparators -> dead time per leg -> six registered gate outputs.
 // Every carrier period follows Minas Table I / AVR495 Table 4-3: symmetric seven segments, V0 split
 // at the start and end, V7 in the middle, one leg switching per transition.
 // Parameters:
 //   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
 //                continuous SVPWM, valley updates; mode_i, theta_i, v1_i, v2_i, vf_*_i, dpwm_i, upd_i,
-//                presc_i, sync_en_i and sync_i are ignored. One serial calculator (rtl/svpwm_duty_lite.sv:
-//                duty + hexagon clamp + minimum pulse, the same arithmetic) replaces svpwm_duty and
-//                svpwm_minpulse; SampleLead = LiteDutyLatency + 1 (model fixed.LITE_SAMPLE_LEAD)
+//                presc_i, sync_en_i and sync_i are ignored. The same calculator runs its FREQ-only program
+//                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
-//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4;
-//                default 48, Compact: SampleLead + 4)
+//   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4,
+//                the default: svpwm_pkg::min_period(Compact), 219 / 221 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
@@ -24,8 +24,9 @@
 // (SVPWM or bus-clamped DPWM). Invalid mode / update codes: zero vector / valley update + cfg_err_o.
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, mode_i) is sampled SampleLead = 39 clocks before it (compute 34 + minimum pulse 4 + load
-// 1), in the clock before count == 39 (down) / P - 39 (up). period_i, dt_i, mp_i, upd_i, presc_i are
+// vf_*, dpwm_i, mode_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
+// calculator's program + load 1: 215, compact 217), in the clock before count == SampleLead (down) /
+// P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it; a changed period, dead time or minimum
 // pulse forces an update at that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
@@ -389,9 +390,9 @@ module svpwm_core #(
     .vf_slope_i (vf_slope_q),
     .vf_mmax_i  (vf_mmax_q),
     .dpwm_i     (dpwm_q),
-    // the compact variant's updates are valley updates only (start_q implies ev_valley_q) and its
-    // calculator takes period and threshold at start_i, so it reads the next-period registers directly
-    // (calc_period_q / calc_thr_q are then removed by synthesis: 80 LC on the HX1K)
+    // the compact variant's updates are valley updates only (start_q implies ev_valley_q): it reads the
+    // next-period registers directly, which hold from the sample to the next valley's sample (a whole
+    // period > the computation); calc_period_q / calc_thr_q are then removed by synthesis (80 LC, HX1K)
     .period_i   (Compact ? period_next_q : calc_period_d),   // full: held start..done (calc_period_q)
     .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_d),
     .busy_o     (duty_busy),

@@ -30,12 +30,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "model"))
 from svpwm_model import regmap as R  # noqa: E402  (generated from rdl/svpwm.rdl)
+from svpwm_model import fixed  # noqa: E402  (the cores' latencies: from the calculator's program)
 
 CMD_WRITE, CMD_READ, RSP_ACK, RSP_NAK = 0x57, 0x52, 0x4B, 0x4E
 ID_VALUE = R.ID.reset
 MAP_MAJOR = R.VERSION.field("major").reset
-MIN_PERIOD = 48          # MinPeriod of the board designs (svpwm_ice40_sys default; not readable)
-MIN_PERIOD_COMPACT = 230  # the same with the compact core (its SampleLead + 4; e.g. the iCEstick)
+MIN_PERIOD = fixed.MIN_PERIOD                  # MinPeriod of the board designs (svpwm_ice40_sys default)
+MIN_PERIOD_COMPACT = fixed.LITE_MIN_PERIOD     # the same with the compact core (e.g. the iCEstick)
 # CTRL enumerations (docs/registers.md, CTRL.mode / .dpwm / .upd)
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}

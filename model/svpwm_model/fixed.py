@@ -27,7 +27,7 @@ PHASE_WIDTH = 34          # fraction bits of the in-sector angle accumulator
 FREQ_WIDTH = 24           # signed frequency word
 CNT_WIDTH = 16            # carrier / period / compare width
 DT_WIDTH = 10             # dead-time counter width (clocks)
-MIN_PERIOD = 48           # smallest accepted half period (clocks); smaller inputs are clamped
+MIN_PERIOD_BASE = 48      # rtl/svpwm_pkg.sv MinPeriodBase: the floor of the MinPeriod defaults
 ROM_BITS = 8              # sine ROM: 2**ROM_BITS intervals over 0..60 deg (257 points)
 INTERP_BITS = 8           # linear-interpolation fraction bits
 ANGLE_BITS = ROM_BITS + INTERP_BITS   # angle bits the duty calculator uses (top of the accumulator)
@@ -35,14 +35,6 @@ SIN_BITS = 16             # UQ0.16 sine samples
 M_FRAC = 15               # m is UQ1.15
 M_ONE = 1 << M_FRAC
 K_FRAC = 8                # fraction bits kept of P*d before the compare-value sum
-DUTY_LATENCY = 34         # clocks from the duty calculator's start strobe to its done strobe
-MINPULSE_LATENCY = 4      # clocks of the minimum-pulse stage
-LITE_DUTY_LATENCY = 225  # clocks start -> done of rtl/svpwm_duty_lite.sv (compact core)
-SAMPLE_LEAD = DUTY_LATENCY + MINPULSE_LATENCY + 1   # clocks from an input sample to its update point (39)
-# compact core (svpwm_core Compact = 1, the iCEstick's HX1K): FREQ mode, SVPWM, valley updates only; one serial
-# calculator (duty + minimum pulse) -- the same arithmetic, a longer lead, and a longer shortest period
-LITE_SAMPLE_LEAD = LITE_DUTY_LATENCY + 1
-LITE_MIN_PERIOD = LITE_SAMPLE_LEAD + 4   # svpwm_core MinPeriod default with Compact = 1
 V_FRAC = 14               # v_alpha, v_beta, v_d, v_q are signed Q2.14
 V_ONE = 1 << V_FRAC
 D_ONE = 1 << SIN_BITS     # dwell time of a whole period
@@ -84,13 +76,14 @@ _ROM = sine_table()
 FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)
 
 
-def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int = MIN_PERIOD) -> tuple[int, bool]:
-    """Clamp a half period to [max(min_period, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped).
+def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int | None = None) -> tuple[int, bool]:
+    """Clamp a half period to [max(min_period, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped);
+    min_period defaults to the full core's MIN_PERIOD.
 
     A period too short for the dead time plus the minimum pulse is lengthened, never the dead time
     shortened: the dead time is a safety setting."""
     top = (1 << CNT_WIDTH) - 1
-    low = max(min_period, 2 * (dt + mp))
+    low = max(_latency("MIN_PERIOD") if min_period is None else min_period, 2 * (dt + mp))
     if p < low:
         return low, True
     if p > top:
@@ -358,3 +351,34 @@ def m_word(m: float) -> int:
     if not 0.0 <= m <= 1.0:
         raise ValueError(f"m = {m} outside [0, 1] (m = 1 is the inscribed circle, line fundamental peak = Udc)")
     return int(round(m * M_ONE))
+
+
+# ---- latencies: from the calculator's program (calc_prog.py; rtl/svpwm_pkg.sv is generated from the same) ---
+# full core: the program on the registered multiplier; compact core (svpwm_core Compact = 1, the iCEstick's
+# HX1K: FREQ mode, SVPWM, valley updates only): the FREQ program on the serial unit. Computed on first use
+# (calc_prog builds on the arithmetic above): fixed.SAMPLE_LEAD etc. read like constants.
+#   CALC_LATENCY / LITE_CALC_LATENCY   clocks svpwm_calc start -> done (full / compact core)
+#   SAMPLE_LEAD / LITE_SAMPLE_LEAD     clocks from an input sample to its update point (+ 1 load clock)
+#   MIN_PERIOD / LITE_MIN_PERIOD       smallest accepted half period, svpwm_core's MinPeriod default
+#                                      (lead + 4, at least MIN_PERIOD_BASE); smaller inputs are clamped
+# Until the engine's compact build fits the HX1K (it does not yet: 1,685 / 1,280 LC for the iCEstick system),
+# the compact core keeps its own serial datapath, rtl/svpwm_duty_lite.sv, behind svpwm_calc's ports:
+LITE_DUTY_LATENCY = 225   # clocks start -> done of rtl/svpwm_duty_lite.sv (svpwm_pkg LiteDutyLatency)
+_LATENCIES: dict[str, int] = {}
+
+
+def _latency(name: str) -> int:
+    if not _LATENCIES:
+        from . import calc_prog
+        for pre, compact in (("", False), ("LITE_", True)):
+            lat = LITE_DUTY_LATENCY if compact else calc_prog.calc_latency(compact)
+            _LATENCIES.update({f"{pre}CALC_LATENCY": lat, f"{pre}SAMPLE_LEAD": lat + 1,
+                               f"{pre}MIN_PERIOD": max(lat + 1 + 4, MIN_PERIOD_BASE)})
+    return _LATENCIES[name]
+
+
+def __getattr__(name: str) -> int:
+    if name in ("CALC_LATENCY", "LITE_CALC_LATENCY", "SAMPLE_LEAD", "LITE_SAMPLE_LEAD", "MIN_PERIOD",
+                "LITE_MIN_PERIOD"):
+        return _latency(name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

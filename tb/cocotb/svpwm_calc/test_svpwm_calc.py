@@ -1,0 +1,553 @@
+# SPDX-License-Identifier: Apache-2.0
+"""svpwm_calc (the core's one calculator) against the golden model, exact (==), and its handshake; both
+variants: Compact = 0 (every input mode, DPWM) and Compact = 1 (FREQ mode, continuous SVPWM).
+
+Expected results: model/svpwm_model/calc_prog.py expect(inp, compact) = fixed.modulate + fixed.snap_min_pulse
+per phase. VF: the RTL gets fabs_i = |freq| >> (fixed.FREQ_WIDTH - 17) as the core computes it; the model gets
+the signed freq word (fixed.vf_m takes the same bits of it). Compact = 1 ignores mode_i, theta_i, fabs_i, v1_i,
+v2_i, vf_*_i and dpwm_i: the compact vectors carry random words there (held while busy) and the model gets
+FREQ mode with dpwm off.
+
+Contract (checked here):
+* start_i in cycle c (sampled by the rising edge ending cycle c) is accepted when idle (not busy_o) and
+  abort_i is low; busy_o is high in cycles c+1 .. c+LATENCY-1; done_o is a one-cycle pulse in cycle
+  c+LATENCY; start_i is ignored while busy_o; the done cycle is idle, so a start there is accepted (back to
+  back).
+* sector_o, cmp_o, sat_o, err_o are the results ONLY in the done_o cycle; they may change while busy (so no
+  check of them outside done cycles).
+* sector_i and angle_i are read at start_i only (scrambled here while busy); every other input (mode, theta,
+  m, fabs, v1, v2, vf_*, dpwm, period, thr) must hold from start_i until done_o, i.e. at every clock edge
+  from the one sampling start_i to the one raising done_o (the done cycle may already carry the next start's
+  inputs). The test holds them while busy and scrambles them only while idle; the harness checks that it does.
+* abort_i: back to idle at once (busy_o low in the next cycle), no done_o for that computation; abort_i
+  together with start_i: the start is not taken; the next computation is exact.
+* restrictions kept by the vectors: period_i >= 2 thr_i, thr_i <= 2^(DtWidth+1) - 2 (dead time + minimum
+  pulse, each DtWidth bits), sector_i 0..5 for a computation that completes.
+LATENCY (clocks start_i -> done_o) is defined in one place below from the model; the harness gets it on its
+input latency_i and checks busy_o / done_o on every clock against a reference of the handshake (chk_o), the test
+checks the done time of every vector.
+
+Checks:
+* harness (tb_svpwm_calc.sv), every clock: busy_o and done_o == the handshake reference for the stimulus
+  actually applied (starts, ignored starts, aborts); and that the test kept the held inputs while busy.
+  Its sticky chk_o is asserted 0 after every run.
+* `run_vectors` (event driven: wakes at the start edge, at done_o and at most twice more per vector):
+  results == model in the done cycle; done_o exactly LATENCY - 1 periods after the sampling edge; one clock
+  after the start busy_o = 1, done_o = 0. While busy, start_i stays HIGH and sector_i / angle_i are scrambled
+  (25 %: again mid-computation, start_i random): ignored. Back to back (start in the done cycle); 2 % of the
+  vectors follow an idle gap with all inputs scrambled, 3 % an aborted computation of junk inputs.
+* `protocol`: every clock driven from Python against a reference (busy_o, done_o every clock, results in
+  every done cycle): single starts with gaps, start_i held high (ignored, back-to-back restarts), random
+  start pulses, aborts in the first / last busy clocks, random start + abort pulses.
+* `abort`: abort_i k = 0 .. LATENCY-1 clocks after a start (0: with start_i): idle at once, no done_o; then a
+  vector is exact.
+
+Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8, 9, 48), P = 2 thr with thr
+0 / odd / even / the largest, P = 2^CntWidth - 1 with thr 0, 1, 113, the largest):
+* `directed_freq`: 6 sectors x theta' 0, 1, 30 deg +-1, 60 deg - 1/2 LSB x m 0, 1, 0x4000, 0x7FFF, 0x8000,
+  0x8001, vertex 0x93CD, 0x93CE, 0xC000, 0xFFFF x (full) every DPWM setting x two (P, thr) corners (one
+  with P = 2^CntWidth - 1).
+* `directed_corners`: every (P, thr) corner x 5 references (x every DPWM setting, full); every ROM interval
+  end (angle k 256 - 1, k 256) at the vertex and m = 0xFFFF.
+* full only: `directed_vf` (V/f law: f = 0, linear, at / beyond mmax, -f, +-FreqMax, boost > mmax, zero /
+  full-scale parameters), `directed_polar` (theta every 30 deg +-3 LSB x m, a full revolution),
+  `directed_ab` (grid incl. -32768 / 32767, the zero vector, rings |v| 0.5 .. 1.99 at every 30 deg, vectors
+  exactly on the 60 deg sector lines), `directed_dq` (vector grid x theta every 30 deg +-3 LSB incl.
+  theta' = 30 deg exactly, a full revolution), `directed_invalid` (modes 5..7: zero vector + err_o); each
+  spread over every DPWM setting and the (P, thr) corners, half of them at P = 2^CntWidth - 1.
+* `angle_sweep`: every in-sector angle 0 .. 0xFFFF (every 61st on Icarus) at m = vertex, vertex + 1, 0xFFFF
+  or random, random sector, legal (P, thr), DPWM (full, FREQ mode).
+* `random_vectors`: seeded; full: every mode incl. 5..7, DPWM, V/f parameters, saturation; compact: junk on
+  the ignored inputs; P in [8, 2^CntWidth - 1] (often <= 4 thr_max) with thr up to min(P/2, thr_max),
+  thr_max / 0 often (snapping likely). CALC_NRAND overrides the count.
+
+Builds: Compact 0 / 1 x CntWidth 16 / 12 (DtWidth 10); pytest items: build x scenario group x simulator, each
+in its own build directory (they run in parallel under pytest -n).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+import os
+import random
+import time
+import zlib
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import cocotb
+import pytest
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer, with_timeout
+from cocotb.utils import get_sim_time
+
+from simrun import REPO, rtl_sources, run_sim
+from svpwm_model import fixed
+from svpwm_model.calc_prog import expect as calc_expect
+
+# the simulator process learns its variant from the pytest item (extra_env); the pytest process does not need it
+COMPACT = os.environ.get("SVPWM_CALC_COMPACT", "0") == "1"
+# clocks from start_i (cycle c) to done_o (cycle c + LATENCY): the one place the test states it
+LATENCY = {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
+
+CLK_NS = 10                  # the harness's clock period
+P_MIN = 8                    # shortest period exercised (the RTL header states no minimum besides 2 thr)
+FSHIFT = fixed.FREQ_WIDTH - 17
+M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexagon vertex
+ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
+MS = (0, 1, 0x4000, 0x7FFF, 0x8000, 0x8001, M_VERTEX, M_VERTEX + 1, 0xC000, 0xFFFF)
+VS = (-32768, -32767, -28378, -16384, -8192, -1, 0, 1, 8192, 16384, 18919, 28378, 32767)
+
+
+def icarus() -> bool:
+    return cocotb.SIM_NAME.lower().startswith("icarus")
+
+
+@dataclass(frozen=True)
+class Vec:
+    mode: int = fixed.MODE_FREQ
+    sector: int = 0          # accumulator sector (FREQ, VF, compact)
+    angle: int = 0           # accumulator theta', UQ0.16 of 60 deg (FREQ, VF, compact)
+    theta: int = 0           # 16 bits = 360 deg (POLAR, DQ)
+    m: int = 0               # UQ1.15 (FREQ, POLAR, compact)
+    freq: int = 0            # signed frequency word (VF); the RTL gets |freq| >> FSHIFT
+    v1: int = 0              # Q2.14 v_alpha / v_d
+    v2: int = 0              # Q2.14 v_beta / v_q
+    boost: int = 0
+    slope: int = 0
+    mmax: int = 0
+    dpwm: int = 0
+    period: int = P_MIN
+    thr: int = 0
+
+
+def fabs(freq: int) -> int:
+    """fabs_i as the core computes it from the signed frequency word."""
+    return abs(freq) >> FSHIFT
+
+
+class CalcTB:
+    def __init__(self, dut):
+        self.dut = dut
+        self.W = len(dut.period_i)
+        self.top = (1 << self.W) - 1
+        self.thr_max = (1 << len(dut.thr_i)) - 2      # dead time + minimum pulse, each DtWidth bits
+        self.lat = LATENCY
+
+    # ---- model and pins -------------------------------------------------------------------------------
+    def expect(self, v: Vec) -> tuple[int, ...]:
+        """(sector, C_a, C_b, C_c, sat, err) of the golden model."""
+        assert 2 * v.thr <= v.period <= self.top and v.thr <= self.thr_max and 0 <= v.sector < 6, v
+        inp = dict(period=v.period, thr=v.thr, sector=v.sector, a16=v.angle, m=v.m, mode=v.mode, freq=v.freq,
+                   fabs=fabs(v.freq), theta=v.theta, v1=v.v1, v2=v.v2, vf_boost=v.boost, vf_slope=v.slope,
+                   vf_mmax=v.mmax, dpwm=v.dpwm)
+        sec, c, sat, err = calc_expect(inp, COMPACT)
+        assert all(0 <= x <= v.period for x in c), (v, c)
+        return (sec, *c, int(sat), int(err))
+
+    def outputs(self) -> tuple[int, ...]:
+        """(busy, done, sector, C_a, C_b, C_c, sat, err)."""
+        d, W = self.dut, self.W
+        cmp = int(d.cmp_o.value)
+        return (int(d.busy_o.value), int(d.done_o.value), int(d.sector_o.value), cmp & self.top,
+                (cmp >> W) & self.top, (cmp >> 2 * W) & self.top, int(d.sat_o.value), int(d.err_o.value))
+
+    def drive(self, start: int, v: Vec) -> None:
+        d = self.dut
+        d.start_i.value = start
+        d.mode_i.value = v.mode
+        d.sector_i.value = v.sector
+        d.angle_i.value = v.angle
+        d.theta_i.value = v.theta
+        d.m_i.value = v.m
+        d.fabs_i.value = fabs(v.freq)
+        d.v1_i.value = v.v1 & 0xFFFF
+        d.v2_i.value = v.v2 & 0xFFFF
+        d.vf_boost_i.value = v.boost
+        d.vf_slope_i.value = v.slope
+        d.vf_mmax_i.value = v.mmax
+        d.dpwm_i.value = v.dpwm
+        d.period_i.value = v.period
+        d.thr_i.value = v.thr
+
+    # ---- stimulus ------------------------------------------------------------------------------------
+    def junk(self, rng: random.Random) -> Vec:
+        """Any input word at all (idle, or an aborted computation): sector 6, 7, P < 2 thr included."""
+        return Vec(rng.randrange(8), rng.randrange(8), rng.randrange(1 << 16), rng.randrange(1 << 16),
+                   rng.randrange(1 << 16), rng.randint(-fixed.FREQ_MAX, fixed.FREQ_MAX),
+                   rng.randint(-32768, 32767), rng.randint(-32768, 32767), rng.randrange(1 << 16),
+                   rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(4), rng.randrange(self.top + 1),
+                   rng.randrange(self.thr_max + 2))
+
+    @staticmethod
+    def scramble(v: Vec, rng: random.Random) -> Vec:
+        """v with the inputs read at start_i only scrambled (what the calculator must ignore while busy)."""
+        return replace(v, sector=rng.randrange(8), angle=rng.randrange(1 << 16))
+
+    def ignored(self, v: Vec, rng: random.Random) -> Vec:
+        """Compact: random words on the inputs the compact variant ignores; full: v."""
+        if not COMPACT:
+            return v
+        return replace(v, mode=rng.randrange(8), theta=rng.randrange(1 << 16),
+                       freq=rng.randint(-fixed.FREQ_MAX, fixed.FREQ_MAX), v1=rng.randint(-32768, 32767),
+                       v2=rng.randint(-32768, 32767), boost=rng.randrange(1 << 16), slope=rng.randrange(1 << 16),
+                       mmax=rng.randrange(1 << 16), dpwm=rng.randrange(4))
+
+    def p_thr(self, rng: random.Random) -> tuple[int, int]:
+        """A legal (P, thr), snapping likely."""
+        r = rng.random()
+        p = P_MIN if r < 0.03 else self.top if r < 0.08 else \
+            rng.randint(P_MIN, min(self.top, 4 * self.thr_max)) if r < 0.5 else rng.randint(P_MIN, self.top)
+        tmax = min(self.thr_max, p // 2)
+        r = rng.random()
+        return p, (tmax if r < 0.1 else 0 if r < 0.15 else rng.randint(0, tmax))
+
+    def rand_vec(self, rng: random.Random) -> Vec:
+        """A legal random vector: every mode incl. 5..7 (full), DPWM, V/f, saturation; compact: junk ignored."""
+        fm = fixed.FREQ_MAX
+        p, t = self.p_thr(rng)
+        r = rng.random()
+        m = rng.randrange(1 << 16) if r < 0.5 else rng.randint(0, M_VERTEX + 64) if r < 0.8 \
+            else rng.randint(0xF000, 0xFFFF)
+        if COMPACT:
+            return self.ignored(Vec(sector=rng.randrange(6), angle=rng.randrange(1 << 16), m=m, period=p, thr=t), rng)
+        mode = rng.choice((0, 0, 1, 1, 2, 2, 3, 3, 3, 4, 4, 4, 5, 6, 7))
+        if rng.random() < 0.5:                                   # uniform words
+            v1, v2 = rng.randint(-32768, 32767), rng.randint(-32768, 32767)
+        else:                                                    # uniform magnitude 0 .. 1.99, any angle
+            mag, ph = rng.uniform(0, 1.99) * fixed.V_ONE, rng.uniform(0, 2 * math.pi)
+            v1, v2 = (max(-32768, min(32767, round(mag * f(ph)))) for f in (math.cos, math.sin))
+        freq = rng.randint(-fm, fm) if rng.random() < 0.5 else rng.randint(-(1 << 20), 1 << 20)
+        return Vec(mode, rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), m, freq, v1, v2,
+                   rng.randrange(0x4000), rng.randrange(1 << 16) >> rng.randrange(17),
+                   rng.choice((rng.randrange(1 << 16), 0x8000, M_VERTEX, 0xFFFF)), rng.randrange(4), p, t)
+
+    # ---- runs ----------------------------------------------------------------------------------------
+    async def reset(self) -> None:
+        dut = self.dut
+        self.drive(0, Vec())
+        dut.abort_i.value = 0
+        dut.latency_i.value = self.lat
+        dut.rst_ni.value = 0
+        await FallingEdge(dut.clk)
+        await FallingEdge(dut.clk)
+        dut.rst_ni.value = 1
+        assert self.outputs()[:2] == (0, 0)
+
+    def check_harness(self, what: str) -> None:
+        chk, cyc = int(self.dut.chk_o.value), int(self.dut.err_cyc_o.value)
+        assert chk == 0, (f"{what}: harness checker chk_o = {chk:03b} at clock {cyc} after reset (bit 0: busy_o, "
+                          f"bit 1: done_o differ from the handshake with LATENCY = {self.lat}; bit 2: the test "
+                          f"changed a held input while busy)")
+
+    async def aborted_start(self, rng: random.Random, k: int) -> None:
+        """Start junk, abort_i k clocks after the start edge (k = 0: together with start_i, which then is not
+        accepted; k = LATENCY - 2, - 1: in the last busy clocks, so no done_o must follow); sector_i / angle_i
+        scrambled while busy, start_i random. busy_o and done_o low afterwards."""
+        dut = self.dut
+        v = self.junk(rng)
+        self.drive(1, v)
+        dut.abort_i.value = int(k == 0)
+        await FallingEdge(dut.clk)
+        if k:
+            self.drive(int(rng.random() < 0.5), self.scramble(v, rng))
+            await Timer((k - 1) * CLK_NS + 2, "ns")            # 2 ns after falling edge k (before rising edge k)
+            dut.abort_i.value = 1
+            await FallingEdge(dut.clk)
+        self.drive(0, self.junk(rng))                           # idle: anything
+        dut.abort_i.value = 0
+        got = self.outputs()
+        assert got[:2] == (0, 0), f"abort {k} clocks after the start: busy_o, done_o = {got[:2]}, expected idle"
+        await FallingEdge(dut.clk)                              # no done_o on its way
+        assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
+
+    async def run_vectors(self, vecs: list[Vec], rng: random.Random, name: str) -> None:
+        """Event driven, back to back (class docstring of the module: `run_vectors`)."""
+        dut, lat = self.dut, self.lat
+        t0 = time.perf_counter()
+        await FallingEdge(dut.clk)
+        for i, v in enumerate(vecs):
+            r = rng.random()
+            if r < 0.03:                                        # a junk computation aborted after k clocks
+                await self.aborted_start(rng, rng.randint(0, lat - 1))
+            elif r < 0.05:                                      # an idle gap, every input scrambled
+                self.drive(0, self.junk(rng))
+                for _ in range(rng.randint(1, 3)):
+                    await FallingEdge(dut.clk)
+            self.drive(1, v)
+            await FallingEdge(dut.clk)
+            t_start = get_sim_time("ns") - CLK_NS // 2         # the rising edge that sampled v
+            got = self.outputs()
+            assert got[:2] == (1, 0), f"{name} {i}: busy_o, done_o = {got[:2]} one clock after the start"
+            self.drive(1, self.scramble(v, rng))                # start_i held high: ignored while busy
+            if lat > 4 and rng.random() < 0.25:                 # scramble once more mid-computation
+                await Timer(rng.randint(1, lat - 3) * CLK_NS + 2, "ns")
+                self.drive(int(rng.random() < 0.5), self.scramble(v, rng))
+            await with_timeout(RisingEdge(dut.done_o), (lat + 2) * CLK_NS, "ns")
+            await ReadOnly()
+            dt = get_sim_time("ns") - t_start
+            assert dt == (lat - 1) * CLK_NS, f"{name} {i}: done_o {dt} ns after the start edge, expected " \
+                                             f"{(lat - 1) * CLK_NS} (LATENCY {lat})"
+            exp = self.expect(v)
+            got = self.outputs()
+            assert got == (0, 1, *exp), \
+                f"{name} {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = {got}, model {exp}"
+            await FallingEdge(dut.clk)                          # middle of the done cycle
+        self.drive(0, Vec())
+        await FallingEdge(dut.clk)
+        await FallingEdge(dut.clk)
+        self.check_harness(name)
+        dut._log.info("%s: %d vectors == model in %.1f s (LATENCY %d)", name, len(vecs), time.perf_counter() - t0,
+                      lat)
+
+    async def protocol(self, sched: list[tuple[int, int, Vec]], min_starts: int) -> None:
+        """Every clock: busy_o, done_o against a reference of the handshake for the schedule of (start_i,
+        abort_i, inputs) per clock, the results in every done cycle against the model. While the reference
+        is busy the held inputs of the accepted vector are driven (sector_i / angle_i from the schedule)."""
+        dut, lat = self.dut, self.lat
+        st, done, latch, starts, aborted = 0, 0, None, 0, 0
+        for cyc, (start, abort, v) in enumerate(sched):
+            got = self.outputs()
+            assert got[:2] == (int(st != 0), done), f"cycle {cyc}: busy_o, done_o = {got[:2]}, reference " \
+                                                    f"{(int(st != 0), done)}"
+            if done:
+                exp = self.expect(latch)
+                assert got[2:] == exp, f"cycle {cyc} {latch}: RTL results {got[2:]}, model {exp}"
+            if st:
+                v = replace(latch, sector=v.sector, angle=v.angle)
+            self.drive(start, v)
+            dut.abort_i.value = abort
+            done = 0                                            # the reference's next cycle
+            if abort:
+                aborted += st != 0
+                st = 0
+            elif st == lat - 1:
+                st, done = 0, 1
+            elif st:
+                st += 1
+            elif start:
+                st, latch = 1, v
+                starts += 1
+            await FallingEdge(dut.clk)
+        assert st == 0 and not done, "schedule ends busy"
+        assert starts >= min_starts, f"only {starts} starts accepted"
+        self.check_harness("protocol")
+        dut._log.info("protocol: %d clocks, %d starts (%d aborted), LATENCY %d", len(sched), starts, aborted, lat)
+
+
+# ---- directed vectors -------------------------------------------------------------------------------------
+
+def corners(top: int, thr_max: int) -> tuple[list[tuple[int, int]], list[tuple[int, int]]]:
+    """(P, thr) corners: (those with P = 2^CntWidth - 1, the others): small periods, P = 2 thr (the boundary)
+    with thr 0 / 1 / odd / even / largest, the top period with thr 0, 1, 113, the largest."""
+    out = [(P_MIN, 0), (P_MIN, 4), (P_MIN, 3), (9, 4), (48, 0), (48, 7), (48, 24), (1000, 0), (1000, 37),
+           (2 * thr_max, thr_max), (2 * thr_max - 1, thr_max - 1), (2 * 101, 101), (2 * 100, 100)]
+    lo = [(p, t) for p, t in out if 2 * t <= p < top]
+    hi = [(top, t) for t in (0, 1, 113, thr_max) if 2 * t <= top]
+    return hi, lo
+
+
+def spread(base: list[Vec], hi, lo, dpwm: bool = True) -> list[Vec]:
+    """Every vector of `base` once: DPWM cycled (full), (P, thr) alternating between the top-P corners and
+    the others, each list cycled."""
+    out = []
+    for i, v in enumerate(base):
+        k = i // 4 if dpwm else i
+        p, t = (hi[(k // 2) % len(hi)] if k % 2 == 0 else lo[(k // 2) % len(lo)])
+        out.append(replace(v, dpwm=(i % 4) if dpwm else v.dpwm, period=p, thr=t))
+    return out
+
+
+def boundary_thetas() -> list[int]:
+    """theta at every 30 deg (k 2^16 / 12, rounded) +- 3 LSB: theta' near 0, 60 deg - 1 and 30 deg, all sectors.
+    (6 theta is even, so theta' = 0 exactly only at 0 / 180 deg and theta' = 30 deg exactly only at
+    theta = 16384 / 49152; theta' = 60 deg - 2 LSB is the largest reachable.)"""
+    return sorted({(round(k * 65536 / 12) + d) & 0xFFFF for k in range(12) for d in range(-3, 4)})
+
+
+def ab_on_lines() -> list[tuple[int, int]]:
+    """(v_alpha, v_beta) exactly on a 60 deg sector line: Z = v_beta/2 - sqrt3/2 v_alpha = 0 or Y = 0 in the
+    RTL's integers (a projection q_k exactly 0: the tie in the sector search)."""
+    out = []
+    for va in (-32768, -30001, -20000, -9999, -2, 2, 9998, 20000, 30000, 32767):
+        a = fixed._mul_v(va, fixed.SQRT3_2)
+        if a % 2 == 0 and -32768 <= a // 2 <= 32767:
+            out += [(va, a // 2), (va, -(a // 2))]
+    return out
+
+
+def directed(key: str, top: int, thr_max: int) -> list[Vec]:
+    hi, lo = corners(top, thr_max)
+    ndp = 1 if COMPACT else 4
+    F, VF, PO, AB, DQ = fixed.MODE_FREQ, fixed.MODE_VF, fixed.MODE_POLAR, fixed.MODE_AB, fixed.MODE_DQ
+    if key == "freq":            # sector x theta' x m (x DPWM) x two (P, thr) corners, one at the top P
+        out, i = [], 0
+        for s, a, m in itertools.product(range(6), ANGLES, MS):
+            for d in range(ndp):
+                for p, t in (hi[i % len(hi)], lo[(i * 5) % len(lo)]):
+                    out.append(Vec(F, s, a, m=m, dpwm=d, period=p, thr=t))
+                i += 1
+        return out
+    if key == "corners":         # every corner x 5 references (x DPWM); ROM interval ends
+        out = [Vec(F, s, a, m=m, dpwm=d, period=p, thr=t) for p, t in hi + lo
+               for s, a, m in ((0, 0, 0), (1, 0x8000, 0x8000), (5, 0xFFFF, 0xFFFF), (2, 1, M_VERTEX),
+                               (4, 0x4000, 0x93CE)) for d in range(ndp)]
+        for k in range(0, 257, 8):
+            for a in ((k << 8) - 1, k << 8):
+                if 0 <= a <= 0xFFFF:
+                    out.append(Vec(F, k % 6, a, m=(M_VERTEX, 0xFFFF)[k & 1], dpwm=k % ndp, period=top,
+                                   thr=(k * 7) % (thr_max + 1)))
+        return out
+    assert not COMPACT, key
+    fm = fixed.FREQ_MAX
+    if key == "vf":              # the law (f = 0 -> boost, linear, at / beyond mmax, sign, extremes)
+        laws = [(0x0800, 0x0100, 0x8000), (0x0800, 0x0181, 0x93CD), (0x1000, 0x0100, 0x8000),
+                (0x9000, 0x0010, 0x8000), (0, 0, 0), (0xFFFF, 0xFFFF, 0xFFFF), (0x0123, 0xFFFF, 0xFFFF),
+                (0x4000, 0x0001, 0x0000), (0, 0x0080, 0xFFFF)]
+        freqs = (0, 1, (1 << FSHIFT) - 1, 1 << FSHIFT, -(1 << FSHIFT), 0x3000 << FSHIFT, -(0x3000 << FSHIFT),
+                 (0x6FFF << FSHIFT) + 5, 0x7000 << FSHIFT, -((0x7000 << FSHIFT) + 127), 0x7001 << FSHIFT,
+                 0x8000 << FSHIFT, fm, -fm, 123456, -123456)
+        return spread([Vec(VF, (i * 5) % 6, ANGLES[i % len(ANGLES)], freq=f, boost=b, slope=s, mmax=mx)
+                       for i, ((b, s, mx), f) in enumerate(itertools.product(laws, freqs))], hi, lo)
+    if key == "polar":           # every 30 deg +- 3 LSB x m; a full revolution in 257-LSB steps
+        ms = (0, 0x4000, 0x8000, M_VERTEX, M_VERTEX + 1, 0xFFFF)
+        po = [Vec(PO, theta=t, m=m) for t in boundary_thetas() for m in ms]
+        po += [Vec(PO, theta=t, m=m) for t in range(0, 1 << 16, 257) for m in (0x8000, M_VERTEX)]
+        return spread(po, hi, lo)
+    if key == "ab":              # grid (extremes, zero), rings at every 30 deg +- a little, exact sector lines
+        ab = [(a, b) for a in VS for b in VS]
+        for r in (0.5, 1.0, 2 / math.sqrt(3), 1.5, 1.99):
+            for k in range(12):
+                for d in (-1e-4, 0.0, 1e-4):
+                    ph = math.radians(30 * k) + d
+                    ab.append(tuple(max(-32768, min(32767, round(r * fixed.V_ONE * f(ph))))
+                                    for f in (math.cos, math.sin)))
+        ab += ab_on_lines()
+        return spread([Vec(AB, v1=a, v2=b) for a, b in ab], hi, lo)
+    if key == "dq":              # vector grid x theta at every 30 deg +- 3 (incl. theta' = 30 deg), a revolution
+        dqv = [(0, 0), (0x4000, 0), (0, 0x4000), (-0x4000, 0), (0, -0x4000), (32767, 32767), (-32768, -32768),
+               (-32768, 32767), (32767, -32768), (1, 0), (0, 1), (-1, -1), (12345, -23456), (M_VERTEX // 2, 0)]
+        dq = [Vec(DQ, theta=t, v1=a, v2=b) for t in boundary_thetas() for a, b in dqv]
+        dq += [Vec(DQ, theta=t, v1=a, v2=b) for t in range(0, 1 << 16, 257)
+               for a, b in ((0x4000, 0), (9000, 30000), (-32768, -32768))]
+        return spread(dq, hi, lo)
+    if key == "invalid":         # zero vector + err_o whatever the other inputs, every DPWM x 4 corners
+        rng = random.Random(5)
+        bad = [Vec(md, rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(1 << 16),
+                   rng.randint(-fm, fm), rng.randint(-32768, 32767), rng.randint(-32768, 32767),
+                   0x8000, 0x100, 0xFFFF) for md in (5, 6, 7) for _ in range(2)]
+        pts = hi[:1] + hi[-1:] + lo[:1] + lo[-5:-4]
+        return [replace(v, dpwm=d, period=p, thr=t) for v in bad for d in range(4) for p, t in pts]
+    raise KeyError(key)
+
+
+# ---- cocotb tests -----------------------------------------------------------------------------------------
+
+DIRECTED = ("freq", "corners", "vf", "polar", "ab", "dq", "invalid")     # vf .. invalid: full variant only
+
+
+def _directed_test(key: str):
+    async def t(dut):
+        tb = CalcTB(dut)
+        await tb.reset()
+        await tb.run_vectors(directed(key, tb.top, tb.thr_max), random.Random(zlib.crc32(key.encode())), key)
+    t.__name__ = t.__qualname__ = f"directed_{key}"
+    t.__doc__ = f"Directed vectors, set {key!r} (module docstring)."
+    return cocotb.test()(t)
+
+
+for _k in DIRECTED:
+    globals()[f"directed_{_k}"] = _directed_test(_k)
+
+
+@cocotb.test()
+async def angle_sweep(dut):
+    """Every in-sector angle 0 .. 0xFFFF (Verilator; every 61st on Icarus) at the vertex m and beyond, random
+    sector, (P, thr) and DPWM: every ROM interval and interpolation fraction, both clamp branches."""
+    tb = CalcTB(dut)
+    rng = random.Random(0x5EE9 + tb.W)
+    step = int(os.environ.get("CALC_SWEEP_STEP", 61 if icarus() else 1))
+    vecs = []
+    for a in range(0, 1 << 16, step):
+        p, t = tb.p_thr(rng)
+        m = (M_VERTEX, M_VERTEX + 1, 0xFFFF, rng.randrange(1 << 16))[a & 3]
+        vecs.append(tb.ignored(Vec(sector=rng.randrange(6), angle=a, m=m, dpwm=rng.randrange(4), period=p, thr=t),
+                               rng))
+    await tb.reset()
+    await tb.run_vectors(vecs, rng, "angle sweep")
+
+
+@cocotb.test()
+async def random_vectors(dut):
+    """Seeded random vectors (module docstring); CALC_NRAND overrides the count."""
+    tb = CalcTB(dut)
+    n = int(os.environ.get("CALC_NRAND", 3000 if icarus() else 50000))
+    rng = random.Random(0xCA1C + tb.W + (COMPACT << 8))
+    await tb.reset()
+    await tb.run_vectors([tb.rand_vec(rng) for _ in range(n)], rng, "random")
+
+
+@cocotb.test()
+async def protocol(dut):
+    """Every clock against the reference: single starts with gaps, start_i held high with inputs changing
+    every clock (ignored while busy, back-to-back restarts), random start pulses, aborts."""
+    tb = CalcTB(dut)
+    lat = tb.lat
+    rng = random.Random(0xB05 + tb.W)
+    await tb.reset()
+    sched = []
+    for gap in (0, 1, 2, 15):                                 # single start pulses
+        sched += [(1, 0, tb.rand_vec(rng))] + [(0, 0, tb.junk(rng)) for _ in range(lat - 1 + gap)]
+    sched += [(1, 0, tb.rand_vec(rng)) for _ in range(3 * lat + 3)]   # start held high
+    for k in (lat - 2, lat - 1, 1, 5):                        # abort in the last / first busy clocks, start high
+        sched += [(1, 0, tb.rand_vec(rng))] + [(1, 0, tb.rand_vec(rng)) for _ in range(k - 1)]
+        sched += [(1, 1, tb.rand_vec(rng))] + [(0, 0, tb.junk(rng)) for _ in range(3)]
+    sched += [(1, 1, tb.rand_vec(rng)), (0, 0, tb.junk(rng))]   # abort with start: not taken
+    sched += [(int(rng.random() < 0.1), 0, tb.rand_vec(rng)) for _ in range(4 * lat)]     # random pulses
+    sched += [(int(rng.random() < 0.3), int(rng.random() < 1 / lat), tb.rand_vec(rng)) for _ in range(6 * lat)]
+    sched += [(0, 0, tb.junk(rng)) for _ in range(lat + 2)]
+    await tb.protocol(sched, 12)
+
+
+@cocotb.test()
+async def abort(dut):
+    """abort_i k = 0 .. LATENCY-1 clocks after a start (0: with start_i): idle at once, no done_o; then exact."""
+    tb = CalcTB(dut)
+    rng = random.Random(0xAB0 + tb.W)
+    await tb.reset()
+    vecs = [tb.rand_vec(rng) for _ in range(tb.lat + 1)]
+    await tb.run_vectors(vecs[:1], rng, "before abort")
+    for k in range(tb.lat):
+        await tb.aborted_start(rng, k)
+        await tb.run_vectors([vecs[k + 1]], rng, f"after abort at {k}")
+
+
+# ---- pytest items: build x scenario group x simulator ---------------------------------------------------------
+# Verilator: one build directory per build, shared by its scenario items (the C++ build is ~25 s, the
+# incremental rebuild ~1 s; simrun serialises the users of one directory); Icarus (rebuilt every run, ~1 s):
+# one directory per item.
+
+BUILDS = {
+    "full_cnt16":    {"Compact": 0, "CntWidth": 16, "DtWidth": 10},
+    "full_cnt12":    {"Compact": 0, "CntWidth": 12, "DtWidth": 10},
+    "compact_cnt16": {"Compact": 1, "CntWidth": 16, "DtWidth": 10},
+    "compact_cnt12": {"Compact": 1, "CntWidth": 12, "DtWidth": 10},
+}
+SCENARIOS = {
+    "directed":  ["directed_freq", "directed_corners"],
+    "modes":     ["directed_vf", "directed_polar", "directed_ab", "directed_dq", "directed_invalid"],
+    "sweep":     ["angle_sweep"],
+    "random":    ["random_vectors"],
+    "handshake": ["protocol", "abort"],
+}
+# builds interleaved: pytest-xdist hands the first items out round robin, so the two workers start on
+# different builds (the Verilator items of one build share its build directory, see below)
+ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Compact"] and s == "modes")]
+
+
+@pytest.mark.parametrize("build,scenario", ITEMS, ids=[f"{b}-{s}" for b, s in ITEMS])
+def test_svpwm_calc(sim, build, scenario):
+    here = Path(__file__).parent
+    run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
+            test_module="test_svpwm_calc", test_dir=here, parameters=BUILDS[build],
+            build_name=build if sim == "verilator" else f"{build}-{scenario}", testcase=SCENARIOS[scenario],
+            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"]})

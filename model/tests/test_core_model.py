@@ -48,15 +48,18 @@ def clip(iv, lo, hi):
     return [(max(a, lo), min(b, hi)) for a, b in iv if min(b, hi) > max(a, lo)]
 
 
-SCHED = [Inputs(FW(f), MW(m), p, dt) for f, m, p, dt in
+# the schedules' periods were chosen around MinPeriod 48 (two below it); they move with the core's MinPeriod
+# (the calculator's lead + 4), so the same ones are clamped
+O = fixed.MIN_PERIOD - fixed.MIN_PERIOD_BASE
+SCHED = [Inputs(FW(f), MW(m), p + O, dt) for f, m, p, dt in
          [(120.0, 0.7, 64, 3), (120.0, 0.7, 64, 3), (-300.0, 1.0, 40, 0), (800.0, 0.05, 100, 7),
           (0.0, 0.5, 33, 1), (2000.0, 0.95, 77, 2), (-2000.0, 0.3, 64, 5), (50.0, 0.0, 90, 0)] * 4]
 
 
 def test_valley_spacing_and_first_period():
-    idle = Inputs(FW(120.0), MW(0.7), 50, 3)
+    idle = Inputs(FW(120.0), MW(0.7), 50 + O, 3)
     r = CoreModel().run(idle, SCHED, len(SCHED))
-    assert r.valley[0] == 0 and r.period[0] == 50
+    assert r.valley[0] == 0 and r.period[0] == 50 + O
     for n in range(len(SCHED)):
         assert r.valley[n + 1] - r.valley[n] == 2 * r.period[n]
         if n:
@@ -96,7 +99,7 @@ def test_pole_intervals_centred_on_peak():
 
 def test_accumulator_equals_angle_step():
     # constant frequency: the angle after N periods = angle_step over all their clocks
-    for f, p, n in ((FW(50.0), 1536, 40), (FW(-777.0), 100, 97), (-(1 << 23), 48, 500), ((1 << 23) - 1, 49, 500)):
+    for f, p, n in ((FW(50.0), 1536, 40), (FW(-777.0), 100 + O, 97), (-(1 << 23), 48 + O, 500), ((1 << 23) - 1, 49 + O, 500)):
         u = Inputs(f, MW(0.5), p, 0)
         mdl = CoreModel(sector=4, angle=(1 << fixed.PHASE_WIDTH) - 5)
         r = mdl.run(u, [u] * n, n)
@@ -106,7 +109,7 @@ def test_accumulator_equals_angle_step():
     # changing frequency and period: idle.freq until the first sample, SAMPLE_LEAD clocks before valley 1;
     # then each sample's frequency word from that sample on
     mdl = CoreModel()
-    idle = Inputs(FW(10.0), 0, 48, 0)
+    idle = Inputs(FW(10.0), 0, 48 + O, 0)
     r = mdl.run(idle, SCHED, len(SCHED))
     theta, t_prev, f = 0, 0, idle.freq
     for n in range(len(SCHED)):

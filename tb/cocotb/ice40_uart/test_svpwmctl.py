@@ -249,10 +249,11 @@ def test_bad_values_refused_nothing_written(argv, match):
 
 def test_locked_and_period_rules():
     fb = FakeBoard()
-    cmd(fb, "set-period", "--clocks", "48")
+    p = fixed.MIN_PERIOD                               # the shortest period (odd: 219)
+    cmd(fb, "set-period", "--clocks", str(p))
     with pytest.raises(ValueError, match="PERIOD >= 2"):
-        cmd(fb, "set-dt", "0.52")                      # 25 clocks: 2 * 25 > 48
-    cmd(fb, "set-dt", "0.5")                           # 24 clocks: 2 * 24 = 48 fits
+        cmd(fb, "set-dt", f"{(p // 2 + 1) / 48:.4f}")  # p // 2 + 1 clocks at 48 MHz: 2 dt > p
+    cmd(fb, "set-dt", f"{(p // 2) / 48:.4f}")          # p // 2 clocks: 2 dt <= p fits
     cmd(fb, "set-period", "--clocks", "1536")
     fb.status = R.STATUS.encode(locked=1)
     n = len(fb.writes)

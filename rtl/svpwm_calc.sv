@@ -171,16 +171,19 @@ module svpwm_calc #(
     );
     assign midneg = (sel[1:0] == 2'd3) || (sel[3:2] == 2'd3) || (sel[5:4] == 2'd3);
 
-    always_comb begin
-      c                 = '0;
-      c[svpwm_pkg::CalcFlags-1:0]  = flags_q;
-      c[svpwm_pkg::CVf]            = is_vf;
-      c[svpwm_pkg::CXy]            = is_ab || is_dq;
-      c[svpwm_pkg::CErr]           = is_err;
-      c[svpwm_pkg::CMidsgn]        = midneg ^ flags_q[svpwm_pkg::FFirst];
-      c[svpwm_pkg::CDq]            = is_dq;
-      c[svpwm_pkg::CNv1n]          = !flags_q[svpwm_pkg::FV1n];
-      c[svpwm_pkg::CNhalf]         = !flags_q[svpwm_pkg::FHalf];
+    // the condition vector, and below the flags and the compare values, bit by bit in continuous
+    // assignments: an always_comb that sets a default and then overwrites single bits of the same vector
+    // re-triggers itself in Icarus 11 (a zero-time loop: the simulation hangs)
+    for (genvar k = 0; k < 32; k++) begin : gen_c
+      if (k < svpwm_pkg::CalcFlags)        begin : gen_flag assign c[k] = flags_q[k]; end
+      else if (k == svpwm_pkg::CVf)        begin : gen_vf   assign c[k] = is_vf; end
+      else if (k == svpwm_pkg::CXy)        begin : gen_xy   assign c[k] = is_ab || is_dq; end
+      else if (k == svpwm_pkg::CErr)       begin : gen_err  assign c[k] = is_err; end
+      else if (k == svpwm_pkg::CMidsgn)    begin : gen_mid  assign c[k] = midneg ^ flags_q[svpwm_pkg::FFirst]; end
+      else if (k == svpwm_pkg::CDq)        begin : gen_dq   assign c[k] = is_dq; end
+      else if (k == svpwm_pkg::CNv1n)      begin : gen_nv1n assign c[k] = !flags_q[svpwm_pkg::FV1n]; end
+      else if (k == svpwm_pkg::CNhalf)     begin : gen_nhf  assign c[k] = !flags_q[svpwm_pkg::FHalf]; end
+      else                                 begin : gen_zero assign c[k] = 1'b0; end
     end
 
     // sector of the X, Y, Z signs (fixed.xyz_sector): q = (X, Z, -Y, -X, -Z, Y), the first s with
@@ -361,9 +364,8 @@ module svpwm_calc #(
     logic [3*CntWidth-1:0] cmp_d, cmp_q;
     logic                  done_q;
 
-    always_comb begin
-      flags_d = flags_q;
-      if (fset) flags_d[dst] = sign;
+    for (genvar k = 0; k < svpwm_pkg::CalcFlags; k++) begin : gen_flags
+      assign flags_d[k] = (fset && dst == 5'(k)) ? sign : flags_q[k];
     end
     assign q_d = qsh ? {q_q[14:0], !sign} : q_q;
 
@@ -391,13 +393,12 @@ module svpwm_calc #(
 
     // out: the phases whose Table 4-3 code is of this class take ACC (0: the highest, 1: the lowest, 2 / 3:
     // the middle compare value)
-    always_comb begin
-      cmp_d = cmp_q;
-      for (int ph = 0; ph < 3; ph++) begin
-        logic [1:0] cls;
-        cls = (sel[2*ph +: 2] == 2'd0) ? 2'(svpwm_pkg::OutHi) : (sel[2*ph +: 2] == 2'd1) ? 2'(svpwm_pkg::OutLo) : 2'(svpwm_pkg::OutMid);
-        if (out_op != 2'(svpwm_pkg::OutNone) && out_op == cls) cmp_d[ph*CntWidth +: CntWidth] = acc_q[CntWidth-1:0];
-      end
+    for (genvar ph = 0; ph < 3; ph++) begin : gen_out
+      logic [1:0] cls;
+      assign cls = (sel[2*ph +: 2] == 2'd0) ? 2'(svpwm_pkg::OutHi)
+                 : (sel[2*ph +: 2] == 2'd1) ? 2'(svpwm_pkg::OutLo) : 2'(svpwm_pkg::OutMid);
+      assign cmp_d[ph*CntWidth +: CntWidth] = (out_op != 2'(svpwm_pkg::OutNone) && out_op == cls)
+                                              ? acc_q[CntWidth-1:0] : cmp_q[ph*CntWidth +: CntWidth];
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin

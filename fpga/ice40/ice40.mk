@@ -21,7 +21,7 @@ ICE40_COMMON := $(sort $(wildcard $(ICE40_DIR)/common/*.sv))
 
 # Per-board parameter overrides (a board's device, top, pins and sources are in ice40flow.py: BOARDS)
 ICE40_PARAMS_icebreaker ?=
-# The iCEstick top uses the compact variant; it still does not fit the HX1K (1588 / 1280 LC, README)
+# The iCEstick top uses the compact variant (its system fits the HX1K: 1168 / 1280 LC, fpga/ice40/README.md)
 ICE40_PARAMS_icestick   ?=
 
 .PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40

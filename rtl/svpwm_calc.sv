@@ -191,12 +191,11 @@ module svpwm_calc #(
     logic [5:0] neg;
     logic [2:0] sw, sw_mod3, sw1_mod3;
     assign neg = {flags_q[svpwm_pkg::FNy], flags_q[svpwm_pkg::FPz], flags_q[svpwm_pkg::FPx], flags_q[svpwm_pkg::FPy], flags_q[svpwm_pkg::FNz], flags_q[svpwm_pkg::FNx]};
-    always_comb begin
-      sw = 3'd0;
-      for (int s = 5; s >= 0; s--) begin
-        if (!neg[s] && neg[(s + 1) % 6]) sw = 3'(s);
-      end
-    end
+    // (a priority chain, not a for loop in an always_comb: that one hung Icarus 11 in a zero-time loop)
+    logic [5:0] edge_s;                   // edge_s[s]: q_s >= 0 > q_s+1
+    assign edge_s = ~neg & {neg[0], neg[5:1]};
+    assign sw = edge_s[0] ? 3'd0 : edge_s[1] ? 3'd1 : edge_s[2] ? 3'd2 :
+                edge_s[3] ? 3'd3 : edge_s[4] ? 3'd4 : edge_s[5] ? 3'd5 : 3'd0;
     always_comb begin
       unique case (sw)
         3'd0, 3'd3: begin sw_mod3 = 3'd0; sw1_mod3 = 3'd1; end

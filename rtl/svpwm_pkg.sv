@@ -51,7 +51,7 @@ package svpwm_pkg;
   localparam int CalcFlags    = 18;
   // adder / RAM width for a compare width: (P + 1) 2^8 +- 2^(CntWidth+8) needs CntWidth + 10 bits
   function automatic int acc_width(input int cnt_width);
-    acc_width = (cnt_width + 10 > 22) ? cnt_width + 10 : 22;
+    acc_width = (cnt_width + 10 > 26) ? cnt_width + 10 : 26;
   endfunction
 
   // microcode word: 42 bits; field = (lowest bit, width)

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 from . import fixed
 
-W_MIN = 22                     # adder width floor: signed projections / dwell sums (22 bits)
+W_MIN = 26                     # adder width floor: the V/f candidate boost + fa slope / 2^8 (25 bits) + sign
 
 
 def acc_width(cnt_width: int) -> int:

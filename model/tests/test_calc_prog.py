@@ -116,3 +116,17 @@ def test_misuse_is_refused():
         cp.pack(dict(qsh=1, rsel=cp.ROM_I))
     with pytest.raises(AssertionError):
         cp.pack(dict(asrc=cp.AS_IN, isel=1, ra=5))
+
+
+@pytest.mark.parametrize("compact,dsp", PROGRAMS[:2], ids=IDS[:2])
+def test_random_cnt12(compact, dsp):
+    """CntWidth 12: the machine's width is the same (acc_width: every product and the V/f candidate need 26
+    bits whatever the compare width), the compare values 12 bits."""
+    assert cp.acc_width(12) == cp.acc_width(16)
+    mach = cp.Machine(cp.program(compact, dsp), cnt_width=12)
+    rng = random.Random(12)
+    for _ in range(1000):
+        v = _vec(rng, compact)
+        v["period"] = min(v["period"], (1 << 12) - 1)
+        v["thr"] = min(v["thr"], v["period"] // 2)
+        assert mach.run(v, junk=rng) == cp.expect(v, compact), v

@@ -9,7 +9,7 @@ and the edge-list leg check run on each. Cases (each over at least one revolutio
   to m = 1.99 (beyond six-step) in polar and alpha-beta; DPWMMIN/MAX/DPWM1; update at the peak, at
   both (double update, different references in the two halves), prescaler, changes of update mode
   while running and the invalid codes (cfg_err_o). Verilator runs P = 1536 (15.6 kHz at 48 MHz), Icarus
-  P = 96 with the same number of carrier periods per revolution scaled down.
+  P = MinPeriod + 21 (240) with the same number of carrier periods per revolution scaled down.
 """
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
 
 ICARUS = os.environ.get("SVPWM_SIM_NAME", "") == "icarus"
-P = 96 if ICARUS else 1536                 # half period
+P = fixed.MIN_PERIOD + 21 if ICARUS else 1536   # half period (Icarus: just above the core's MinPeriod)
 K = 96 if ICARUS else 192                  # carrier periods per revolution (>= 64 at P = 96: |freq| < 2^23)
 DT = 3 if ICARUS else 48                   # dead time (1 us at 48 MHz for P = 1536)
 F_REV = (6 << fixed.PHASE_WIDTH) // (2 * P * K)          # frequency word: one revolution in K periods

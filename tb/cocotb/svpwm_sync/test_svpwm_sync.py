@@ -15,8 +15,9 @@ import cocotb
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 
 from simrun import REPO, rtl_sources, run_sim
+from svpwm_model import fixed
 
-P = 60
+P = fixed.MIN_PERIOD + 21              # half period: just above the core's MinPeriod
 
 
 async def setup(dut):

@@ -218,25 +218,20 @@ def decode(word: int) -> dict:
 
 
 # ---- building the program --------------------------------------------------------------------------------
+def _invert(inv: bool, cin, binv, bci) -> dict:
+    """The B operand's inversion and carry: inv gives - B (binv, cin 1); binv / cin override (cin 0: ~B)."""
+    return dict(binv=(BINV_YES if inv else BINV_NO) if binv is None else binv, bci=bci,
+                cin=(CIN_1 if inv else CIN_0) if cin is None else cin)
+
+
 def ram(addr, rc=RC_NONE, ci=0, inv=False, cin=None, binv=None, bci=0):
     """B = RAM word (| condition bits), optionally inverted (inv: - B with cin 1, or ~B with cin=0)."""
-    b = BINV_YES if inv else BINV_NO
-    if binv is not None:
-        b = binv
-    c = CIN_1 if inv else CIN_0
-    if cin is not None:
-        c = cin
-    return dict(ra=addr, rc=rc, ci=ci, binv=b, bci=bci, cin=c)
+    return dict(ra=addr, rc=rc, ci=ci, **_invert(inv, cin, binv, bci))
 
 
 def aux(asrc, isel=0, psh=0, inv=False, cin=None, binv=None, bci=0):
-    b = BINV_YES if inv else BINV_NO
-    if binv is not None:
-        b = binv
-    c = CIN_1 if inv else CIN_0
-    if cin is not None:
-        c = cin
-    return dict(asrc=asrc, isel=isel, psh=psh, binv=b, bci=bci, cin=c)
+    """B = AUX (asrc: ROM, product, input, shifted ACC, Q, ANG), inverted as ram()."""
+    return dict(asrc=asrc, isel=isel, psh=psh, **_invert(inv, cin, binv, bci))
 
 
 def inp(isel, **kw):

@@ -7,7 +7,8 @@
 // Parameters: Dsp - the registered multiplier (1) or the serial unit (0).
 // Latency: Dsp = 1: P = A * B two clocks after the last load; Dsp = 0: P = A * B 16 clocks after the
 // clock that loads B (A may be loaded in the same clock or before, and must hold until then).
-// Restrictions: Dsp = 0: P holds partial sums while the unit runs; a load of B restarts it.
+// Restrictions: Dsp = 1: A, B and P have no reset (they are the DSP's registers): X after reset until
+// loaded. Dsp = 0: P holds partial sums while the unit runs; a load of B restarts it.
 `default_nettype none
 
 module svpwm_mul #(
@@ -32,18 +33,17 @@ module svpwm_mul #(
 
     assign b_d = lb_i ? b_i : b_q;
 
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        a_q <= '0;
-        b_q <= '0;
-        p_q <= '0;
-      end else begin
-        a_q <= a_d;
-        b_q <= b_d;
-        p_q <= a_q * b_q;
-      end
+    // no reset: SB_MAC16's input and output registers have none, and with one Yosys leaves these 64
+    // registers in the fabric and the DSP unregistered. The calculator loads A and B before it reads P.
+    always_ff @(posedge clk_i) begin
+      a_q <= a_d;
+      b_q <= b_d;
+      p_q <= a_q * b_q;
     end
     assign p_o = p_q;
+
+    logic unused_rst;
+    assign unused_rst = rst_ni;
   end else begin : gen_serial
     // P = {hi, lo}: lo starts as B and shifts out; each step adds A to hi when lo[0] is set
     logic [31:0] p_d, p_q;

@@ -78,15 +78,14 @@ module svpwm_calc #(
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
-    localparam logic [svpwm_pkg::UcBits-1:0] Word0 = Compact ? (Dsp ? svpwm_pkg::UcCompactDspWord0 : svpwm_pkg::UcCompactSerialWord0)
-                                                  : (Dsp ? svpwm_pkg::UcFullDspWord0 : svpwm_pkg::UcFullSerialWord0);
 
     // ---- step counter and microcode ------------------------------------------------------------------
     logic [8:0]        pc_d, pc_q;
-    logic              busy;
-    logic [svpwm_pkg::UcBits-1:0] rom_word, word;
+    logic              busy, busy_d, busy_q;
+    logic [svpwm_pkg::UcBits-1:0] word;
 
-    assign busy = (pc_q != 9'd0);
+    assign busy   = busy_q;                      // == (pc_q != 0), registered
+    assign busy_d = (pc_d != 9'd0);
     always_comb begin
       pc_d = 9'd0;
       if (abort_i)                        pc_d = 9'd0;
@@ -97,10 +96,11 @@ module svpwm_calc #(
     svpwm_ucode #(.Compact(Compact), .Dsp(Dsp)) u_ucode (
       .clk_i  (clk_i),
       .addr_i (pc_d),
-      .word_o (rom_word)
+      .word_o (word)
     );
-    // idle: the idle word (step 1's operand selection) whatever the ROM register holds (e.g. after reset)
-    assign word = busy ? rom_word : Word0;
+    // idle, the ROM reads word 0 (pc_d = 0): the idle word, step 1's operand selection, with no own
+    // fields (only in the very first clock after configuration may the ROM register hold anything else;
+    // the core cannot start then). The own fields below act only while busy.
 
     // ---- decode: own fields (acting in this step, only while busy) ------------------------------------
     logic       aen, ash, hold, we, fset, qsh, ald, mla, mas, mlb, done;
@@ -110,7 +110,7 @@ module svpwm_calc #(
     logic [4:0] mop;
     logic [8:0] misc;
 
-    assign aen  = word[svpwm_pkg::UcAen];
+    assign aen  = word[svpwm_pkg::UcAen];       // (A only matters while busy: ACC holds otherwise)
     assign ash  = word[svpwm_pkg::UcAsh];
     assign hold = word[svpwm_pkg::UcHold];
     assign dst  = word[svpwm_pkg::UcDst +: svpwm_pkg::UcDstW];
@@ -161,14 +161,17 @@ module svpwm_calc #(
 
     logic [svpwm_pkg::CalcFlags-1:0] flags_d, flags_q;
     logic [2:0]           sec_d, sec_q;
-    logic [5:0]           sel;
+    logic [5:0]           sel_d, sel;
     logic                 midneg;
     logic [31:0]          c;
 
+    // Table 4-3 codes of the sector, registered beside it (sel == sector_sel(sec_q) from the first
+    // clock on: the ROM-like no-reset register loads every clock, also in reset)
     svpwm_sector_sel u_sel (
-      .sector_i (sec_q),
-      .sel_o    (sel)
+      .sector_i (sec_d),
+      .sel_o    (sel_d)
     );
+    always_ff @(posedge clk_i) sel <= sel_d;
     assign midneg = (sel[1:0] == 2'd3) || (sel[3:2] == 2'd3) || (sel[5:4] == 2'd3);
 
     // the condition vector, and below the flags and the compare values, bit by bit in continuous
@@ -403,6 +406,7 @@ module svpwm_calc #(
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
         pc_q    <= '0;
+        busy_q  <= 1'b0;
         acc_q   <= '0;
         aux_q   <= '0;
         b_ram_q <= 1'b0;
@@ -416,6 +420,7 @@ module svpwm_calc #(
         done_q  <= 1'b0;
       end else begin
         pc_q    <= pc_d;
+        busy_q  <= busy_d;
         acc_q   <= acc_d;
         aux_q   <= aux_d;
         b_ram_q <= (src == 3'(svpwm_pkg::AsNone));

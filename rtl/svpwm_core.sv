@@ -121,11 +121,11 @@ module svpwm_core #(
     initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
   end
 
-  // ---- run: en_i, but not in the first three clocks after reset, so that the configuration
-  // registers, the lowest legal period and then the idle loads (period clamped for the dead time,
-  // frequency) all happen before the carrier starts -----------------------------------------------
-  // frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse --------
-  logic [2:0] armed_q;
+  // ---- run: en_i, but not in the first ArmClocks (4) clocks after reset, so that the configuration
+  // registers, the lowest legal period, the clamped period and then the idle loads (period clamped for
+  // the dead time, frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i
+  // pulse ------------------------------------------------------------------------------------------
+  logic [svpwm_pkg::ArmClocks-1:0] armed_q;
   logic       run, started_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -133,7 +133,7 @@ module svpwm_core #(
       armed_q   <= '0;
       started_q <= 1'b0;
     end else begin
-      armed_q   <= {armed_q[1:0], 1'b1};
+      armed_q   <= {armed_q[svpwm_pkg::ArmClocks-2:0], 1'b1};
       started_q <= run;
     end
   end
@@ -147,7 +147,7 @@ module svpwm_core #(
   assign upd_in   = Compact ? 2'd0 : upd_i;
   assign presc_in = Compact ? 8'd0 : presc_i;
 
-  assign run = en_i && armed_q[2] && (started_q || !sync_en || sync_i);
+  assign run = en_i && armed_q[svpwm_pkg::ArmClocks-1] && (started_q || !sync_en || sync_i);
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -240,7 +240,9 @@ module svpwm_core #(
   logic signed [FreqWidth-1:0] freq_d, freq_q;
   logic                period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
 
-  assign period_load = run ? period_next_q : period_clamped;     // idle: the port (a start uses it at once)
+  // idle: the clamped port, registered (the carrier's period and period - 1 then start from flip-flops,
+  // not from en_i, the period compare and its mux); the core idles >= 4 clocks after reset (armed_q)
+  assign period_load = run ? period_next_q : period_clamped_q;
 
   svpwm_carrier #(.CntWidth(CntWidth)) u_carrier (
     .clk_i      (clk_i),
@@ -338,15 +340,22 @@ module svpwm_core #(
     .angle_o  (acc_angle)
   );
 
-  // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow)
+  // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow), registered:
+  // one clock after freq_q, i.e. from the calculator's first step on (its programs read it at step 3 at
+  // the earliest: model/tests/test_calc_prog.py checks it)
   logic [FreqWidth-1:0] fmag;
-  logic [15:0]          fabs;
+  logic [15:0]          fabs_d, fabs_q;
 
   assign fmag = freq_q[FreqWidth-1] ? FreqWidth'(-freq_q) : FreqWidth'(freq_q);
   if (FreqWidth >= 17) begin : gen_fabs_shr
-    assign fabs = fmag[FreqWidth-2 -: 16];
+    assign fabs_d = fmag[FreqWidth-2 -: 16];
   end else begin : gen_fabs_shl
-    assign fabs = 16'({fmag[FreqWidth-2:0], (17 - FreqWidth)'(0)});
+    assign fabs_d = 16'({fmag[FreqWidth-2:0], (17 - FreqWidth)'(0)});
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) fabs_q <= '0;
+    else         fabs_q <= fabs_d;
   end
 
   // ---- duty calculator: started in the clock after the sample (event_q) --------------------------
@@ -383,7 +392,7 @@ module svpwm_core #(
                                                                     // re-evaluate the calculator every clock
     .theta_i    (theta_q),
     .m_i        (m_q),
-    .fabs_i     (fabs),
+    .fabs_i     (fabs_q),
     .v1_i       (v1_q),
     .v2_i       (v2_q),
     .vf_boost_i (vf_boost_q),
@@ -393,8 +402,10 @@ module svpwm_core #(
     // the compact variant's updates are valley updates only (start_q implies ev_valley_q): it reads the
     // next-period registers directly, which hold from the sample to the next valley's sample (a whole
     // period > the computation); calc_period_q / calc_thr_q are then removed by synthesis (80 LC, HX1K)
-    .period_i   (Compact ? period_next_q : calc_period_d),   // full: held start..done (calc_period_q)
-    .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_d),
+    // full: calc_period_q / calc_thr_q, loaded at the start and valid from the first step on (the programs
+    // read them at step 2 at the earliest: model/tests/test_calc_prog.py checks it)
+    .period_i   (Compact ? period_next_q : calc_period_q),
+    .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_q),
     .busy_o     (duty_busy),
     .done_o     (snap_done),
     .sector_o   (duty_sector),

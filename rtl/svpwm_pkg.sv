@@ -14,6 +14,9 @@ package svpwm_pkg;
   localparam int CalcLatencyCompactDsp = 118;
   // smallest MinPeriod default of the full core (the shortest half period the tests exercise)
   localparam int MinPeriodBase = 48;
+  // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,
+  // clamped period, idle load (fixed.ARM_CLOCKS)
+  localparam int ArmClocks = 4;
 
   function automatic int calc_latency(input bit compact, input bit dsp);
     if (compact) calc_latency = dsp ? CalcLatencyCompactDsp : CalcLatencyCompactSerial;
@@ -221,10 +224,5 @@ package svpwm_pkg;
     endcase
   endfunction
 
-  // word 0 of each program (the idle word: step 1's operand selection)
-  localparam logic [UcBits-1:0] UcFullDspWord0 = 42'h2c00000;
-  localparam logic [UcBits-1:0] UcCompactSerialWord0 = 42'hc00000;
-  localparam logic [UcBits-1:0] UcFullSerialWord0 = 42'h2c00000;
-  localparam logic [UcBits-1:0] UcCompactDspWord0 = 42'hc00000;
 
 endpackage

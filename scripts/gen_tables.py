@@ -137,6 +137,9 @@ def render_pkg() -> str:
     L += [
         "  // smallest MinPeriod default of the full core (the shortest half period the tests exercise)",
         f"  localparam int MinPeriodBase = {calc_prog.fixed.MIN_PERIOD_BASE};",
+        "  // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,",
+        "  // clamped period, idle load (fixed.ARM_CLOCKS)",
+        f"  localparam int ArmClocks = {calc_prog.fixed.ARM_CLOCKS};",
         "",
         "  function automatic int calc_latency(input bit compact, input bit dsp);",
         "    if (compact) calc_latency = dsp ? CalcLatencyCompactDsp : CalcLatencyCompactSerial;",
@@ -198,12 +201,6 @@ def render_pkg() -> str:
     for (a, b, c, d, e), v in sorted(calc_prog.MISC.items(), key=lambda x: x[1]):
         L.append(f"      4'd{v}: uc_misc = {{1'b{a}, 1'b{b}, 2'd{c}, 3'd{d}, 2'd{e}}};")
     L += ["      default: uc_misc = '0;", "    endcase", "  endfunction", ""]
-    # the idle word's next fields (word 0): the operand selection of step 1 while idle
-    L.append("  // word 0 of each program (the idle word: step 1's operand selection)")
-    for c, d in PROGRAMS:
-        w0 = calc_prog.program(bool(c), bool(d)).encode()[0]
-        L.append(f"  localparam logic [UcBits-1:0] Uc{'Compact' if c else 'Full'}{'Dsp' if d else 'Serial'}Word0 = "
-                 f"{calc_prog.WORD_BITS}'h{w0:x};")
     L += ["", "endpackage", ""]
     return "\n".join(L)
 

@@ -108,6 +108,20 @@ def test_words(compact, dsp):
         assert cp.calc_latency(compact, dsp) + 1 + 4 <= 256
 
 
+@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
+def test_idle_word_and_fabs(compact, dsp):
+    """Word 0 is the idle word: no own fields (the ROM reads it whenever the machine is idle). The |f|, period
+    and threshold inputs (fabs_i, period_i, thr_i) are read into AUX at step 2 at the earliest: svpwm_core
+    registers them in the start clock (|f| one clock after the frequency word it samples with the reference),
+    i.e. they are valid from the calculator's step 1 on."""
+    prog = cp.program(compact, dsp)
+    w0 = cp.decode(prog.encode()[0])
+    assert all(w0[n] == 0 for n, _ in cp.OWN_FIELDS), w0
+    late = (cp.IN_FABS, cp.IN_PERIOD, cp.IN_THR)
+    reads = [k for k, st in enumerate(prog.steps) if st.get("asrc") == cp.AS_IN and st.get("isel") in late]
+    assert reads and all(k - 1 >= 1 for k in reads), reads   # operand of step k is taken in clock k - 1
+
+
 def test_misuse_is_refused():
     """The builder's packing refuses fields that share bits."""
     with pytest.raises(AssertionError):

@@ -16,6 +16,7 @@ import cocotb
 from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
 from cocotb.utils import get_sim_time
 
+from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i
 from svpwm_model.core import CoreModel, Inputs, Run
 
@@ -90,9 +91,9 @@ class CoreTB:
         d.rst_ni.value = 0
         await ClockCycles(d.clk, 3)
         d.rst_ni.value = 1
-        await ClockCycles(d.clk, 3)   # the core runs 3 clocks after the reset release at the earliest
+        await ClockCycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
         self.model = CoreModel(compact=self.compact)
-        self.idle_cycles = 4          # clocks from reset release to cycle 0 of run() (en_i low)
+        self.idle_cycles = fixed.ARM_CLOCKS + 1       # clocks from reset release to cycle 0 of run() (en_i low)
 
     def _cycle(self) -> int:
         return int(round(get_sim_time("ns") - self.t0)) // CLK_NS

@@ -15,7 +15,7 @@
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4,
-//                the default: svpwm_pkg::min_period(Compact), 219 / 221 clocks)
+//                the default: svpwm_pkg::min_period(Compact), 219 / 230 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
@@ -25,13 +25,14 @@
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
 // vf_*, dpwm_i, mode_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
-// calculator's program + load 1: 215, compact 217), in the clock before count == SampleLead (down) /
+// calculator's program + load 1: 215, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it; a changed period, dead time or minimum
 // pulse forces an update at that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
 // time to a turned-on gate. freq_i steps the angle from the sample on. After en_i rises the gates stay
 // off until the first update; en_i low turns all gates off on the next clock and aborts a computation.
+// The first carrier period after en_i rises has period_i as it was two clocks before (idle load registered).
 // Reset: all gates off (at the pins, polarity GatePol). sync_en_i: the carrier starts only with a
 // sync_i pulse (another core's sync_o, same clock), so several cores run phase-aligned.
 // Safety (README "Safety"): fault_i forces the high sides (and, unless braking, the low sides) off

@@ -93,7 +93,7 @@ class CoreTB:
         d.rst_ni.value = 1
         await ClockCycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
         self.model = CoreModel(compact=self.compact)
-        self.idle_cycles = fixed.ARM_CLOCKS + 1       # clocks from reset release to cycle 0 of run() (en_i low)
+        self.idle_cycles = fixed.ARM_CLOCKS + 2       # clocks from reset release to cycle 0 of run() (en_i low)
 
     def _cycle(self) -> int:
         return int(round(get_sim_time("ns") - self.t0)) // CLK_NS
@@ -130,7 +130,7 @@ class CoreTB:
         self.model.idle(self.idle_cycles)
         exp = self.model.run(idle, inputs, n_periods, stop, peak_inputs)
         self.set_inputs(idle)
-        await RisingEdge(d.clk)
+        await ClockCycles(d.clk, 2)                 # period_i on the port 2 clocks before en_i (README, Timing)
         d.en_i.value = 1
         self.t0 = get_sim_time("ns")
         mon: list[tuple[int, int]] = []
@@ -166,7 +166,7 @@ class CoreTB:
                     await ClockCycles(d.clk, stop - 1)
             d.en_i.value = 0
             await ClockCycles(d.clk, 4)
-            self.idle_cycles = 3                    # cycles stop+1 .. stop+3 idle before the next run
+            self.idle_cycles = 4                    # cycles stop+1 .. stop+4 idle before the next run
             end = exp.end
         else:
             await FallingEdge(d.clk)                # leave the read-only phase; the core runs on

@@ -14,6 +14,8 @@ register, so the clock in which the start bit of the reply to `CTRL.en = 1` begi
 """
 from __future__ import annotations
 
+import fcntl
+import hashlib
 import os
 import sys
 from pathlib import Path
@@ -436,15 +438,22 @@ async def period_beyond_the_carrier(dut):
     g.stop()
 
 
+# one pytest item per cocotb test (and system variant), the build shared by them (simrun.run_sim)
+def _cases() -> list[str]:
+    from simrun import cocotb_tests
+    return cocotb_tests(__file__)
+
+
+@pytest.mark.parametrize("case", _cases())
 @pytest.mark.parametrize("compact", [0, 1])
-def test_ice40_uart(sim, compact):
+def test_ice40_uart(sim, compact, case):
     from simrun import rtl_sources, run_sim
     srcs = (rtl_sources(Path(os.environ.get("ICE40_RTL_DIR", REPO / "rtl")))
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)})
+            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case)
 
 
 # --------------------------------------------------------------------------- gate level
@@ -464,15 +473,27 @@ def _netlist(compact: int) -> tuple[Path, Path]:
     import ice40flow
     top = "svpwm_ice40_sys"
     out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"
-    ice40flow.run_synth(out, top, ice40flow.BOARDS["icestick" if compact else "icebreaker"],
-                        ice40flow.system_sources(),
-                        params=dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact),
-                        verilog=True)
-    return out / f"{top}_gl.v", cells
+    board = ice40flow.BOARDS["icestick" if compact else "icebreaker"]
+    params = dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
+    srcs = ice40flow.system_sources()
+    # synthesised once for the items of this variant: again only when a source, the board or a parameter
+    # changed (the key), under a lock (pytest-xdist workers)
+    key = hashlib.sha256(repr((top, board, sorted(params.items()), [str(f) for f in srcs])).encode()
+                         + b"".join(Path(f).read_bytes() for f in srcs)).hexdigest()
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        stamp, netlist = out / ".synth_key", out / f"{top}_gl.v"
+        if not (netlist.is_file() and stamp.is_file() and stamp.read_text() == key):
+            stamp.unlink(missing_ok=True)
+            ice40flow.run_synth(out, top, board, srcs, params=params, verilog=True)
+            stamp.write_text(key)
+    return netlist, cells
 
 
+@pytest.mark.parametrize("case", GL_TESTS)
 @pytest.mark.parametrize("compact", [0, 1])
-def test_ice40_uart_gate_level(sim, compact):
+def test_ice40_uart_gate_level(sim, compact, case):
     """The same tests on the netlist the bitstream is made from (Yosys' reading of the RTL, not the
     simulators'): a construct the two read differently fails here (as -FreqWidth'(FreqMax) did).
     break_condition is left out: it probes the UART receiver inside the hierarchy, which the netlist flattens."""
@@ -486,4 +507,4 @@ def test_ice40_uart_gate_level(sim, compact):
             test_module="test_ice40_uart", test_dir=Path(__file__).parent,
             build_name=f"gate_level_c{compact}", defines={"GATE_LEVEL": 1, "NO_ICE40_DEFAULT_ASSIGNMENTS": 1},
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=GL_TESTS)
+            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case)

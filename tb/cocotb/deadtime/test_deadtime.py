@@ -16,7 +16,8 @@ from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import ClockCycles, FallingEdge
+from cocotb.triggers import FallingEdge
+from clocks import clock_cycles
 
 from simrun import REPO, run_sim
 from svpwm_model.deadtime import BRAKE, HI, LO, OFF, LegState, simulate_cycles
@@ -45,7 +46,7 @@ class DtTB:
         d.rst_ni.value = 1
         # idle (en_i low) until the dead-time counter has saturated: the schedule starts "off for long"
         # (test_reset_turn_off checks the reset state itself)
-        await ClockCycles(d.clk, self.max + 1)
+        await clock_cycles(d.clk, self.max + 1)
         await FallingEdge(d.clk)
         tgt = [OFF if not en else BRAKE if brake else (HI if pole else LO) for en, pole, _, brake, _ in sched]
         exp = simulate_cycles(tgt, [x[2] for x in sched], self.max, LegState(0, 0, self.max),
@@ -129,7 +130,7 @@ async def reset_turn_off(dut):
         await FallingEdge(d.clk)
         await FallingEdge(d.clk)                    # a rising edge with the reset low
         d.rst_ni.value = 1
-        await ClockCycles(d.clk, 2 * dt + 3)
+        await clock_cycles(d.clk, 2 * dt + 3)
         await FallingEdge(d.clk)
         assert str(d.hi_o.value) == "1", (f"dt={dt}: hi {d.hi_o.value} lo {d.lo_o.value} en {d.en_i.value} "
                                           f"brake {d.brake_i.value} pole {d.pole_i.value} dt {d.dt_i.value} "

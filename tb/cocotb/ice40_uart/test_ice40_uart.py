@@ -14,13 +14,16 @@ register, so the clock in which the start bit of the reply to `CTRL.en = 1` begi
 """
 from __future__ import annotations
 
+import fcntl
+import hashlib
 import os
 import sys
 from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge, Timer
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
+from clocks import clock_cycles
 
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
@@ -63,10 +66,10 @@ class Uart:
         for b in data:
             for bit in [0] + [(b >> k) & 1 for k in range(8)] + [1 if stop_ok else 0]:
                 self.dut.rx_i.value = bit
-                await ClockCycles(self.dut.clk, CPB)
+                await clock_cycles(self.dut.clk, CPB)
             self.dut.rx_i.value = 1
             if gap_bits:
-                await ClockCycles(self.dut.clk, CPB * gap_bits)
+                await clock_cycles(self.dut.clk, CPB * gap_bits)
 
     async def _monitor(self):
         d = self.dut
@@ -74,13 +77,13 @@ class Uart:
             await FallingEdge(d.tx_o)
             await ReadOnly()
             start = int(d.cycle.value)
-            await ClockCycles(d.clk, CPB // 2)
+            await clock_cycles(d.clk, CPB // 2)
             assert int(d.tx_o.value) == 0, "tx start bit glitch"
             v = 0
             for k in range(8):
-                await ClockCycles(d.clk, CPB)
+                await clock_cycles(d.clk, CPB)
                 v |= int(d.tx_o.value) << k
-            await ClockCycles(d.clk, CPB)
+            await clock_cycles(d.clk, CPB)
             assert int(d.tx_o.value) == 1, "tx stop bit low"
             self.rx_bytes.append((v, start))
 
@@ -88,13 +91,13 @@ class Uart:
         for _ in range(max_bits):
             if len(self.rx_bytes) >= n:
                 break
-            await ClockCycles(self.dut.clk, CPB)
+            await clock_cycles(self.dut.clk, CPB)
         out, self.rx_bytes = self.rx_bytes[:n], self.rx_bytes[n:]
         return out
 
     async def quiet(self, bits: int = 30) -> bytes:
         """Wait and return whatever arrived (nothing, for a dropped frame)."""
-        await ClockCycles(self.dut.clk, CPB * bits)
+        await clock_cycles(self.dut.clk, CPB * bits)
         out, self.rx_bytes = bytes(b for b, _ in self.rx_bytes), []
         return out
 
@@ -137,9 +140,9 @@ async def setup(dut) -> Uart:
     dut.rst_ni.value = 0
     dut.fault_ni.value = 1
     dut.rx_i.value = 1
-    await ClockCycles(dut.clk, 5)
+    await clock_cycles(dut.clk, 5)
     dut.rst_ni.value = 1
-    await ClockCycles(dut.clk, 5)
+    await clock_cycles(dut.clk, 5)
     return Uart(dut)
 
 
@@ -188,7 +191,7 @@ async def start_against_model(dut, u: Uart, g: Gates, inp: core.Inputs, n: int) 
     """Write CTRL.en = 1 with `inp` on the registers, run n carrier periods and compare every gate edge with
     the golden model (its cycle 0 = the clock the reply to the write starts); returns that clock."""
     c0 = await u.write(R.CTRL, R.CTRL.encode(en=1))
-    await ClockCycles(dut.clk, 2 * inp.period * n + 10 - (int(dut.cycle.value) - c0))
+    await clock_cycles(dut.clk, 2 * inp.period * n + 10 - (int(dut.cycle.value) - c0))
     model = core.CoreModel(compact=bool(COMPACT)).run(inp, [inp] * n, n)
     got = [(c - c0, w) for c, w in g.edges if c - c0 < model.end]
     assert got == model.gate_edges, (f"gate edges differ from the model (period {inp.period}):\n"
@@ -259,7 +262,7 @@ async def writes_drive_the_gates(dut):
     assert await read_all(u, [R.FREQ, R.M, R.PERIOD, R.DT, R.CTRL]) == {"FREQ": 0, "M": m, "PERIOD": p, "DT": dt,
                                                                         "CTRL": 0}
     g = Gates(dut)
-    await ClockCycles(dut.clk, 300)
+    await clock_cycles(dut.clk, 300)
     assert g.edges == [], "gates switched while disabled"
     await start_against_model(dut, u, g, core.Inputs(freq=0, m=m, period=p, dt=dt), 8)
     check_switching(g.edges, p, dt)
@@ -272,16 +275,16 @@ async def writes_drive_the_gates(dut):
     p2, dt2 = P_RUN2, 9                                              # while running: new carrier, new dead time
     await u.write(R.PERIOD, p2)
     await u.write(R.DT, dt2)
-    await ClockCycles(dut.clk, 4 * p2)
+    await clock_cycles(dut.clk, 4 * p2)
     g.clear()
-    await ClockCycles(dut.clk, 2 * p2 * 6)
+    await clock_cycles(dut.clk, 2 * p2 * 6)
     check_switching(g.edges, p2, dt2, snapshot=True)
     assert await u.read(R.PERIOD) == p2 and await u.read(R.DT) == dt2
     if "PERIOD_ACT" in V:
         assert await u.read(R.PERIOD_ACT) == p2
 
     c_stop = await u.write(R.CTRL, 0)                              # en = 0 from clock c_stop
-    await ClockCycles(dut.clk, 3 * p2)
+    await clock_cycles(dut.clk, 3 * p2)
     assert int(dut.gates.value) == 0 and int(dut.led_run_o.value) == 0
     on = [w for c, w in g.edges if c <= c_stop][-1]                # the gates in clock c_stop
     after = [(c, w) for c, w in g.edges if c > c_stop]
@@ -318,7 +321,7 @@ async def malformed_frames_rejected(dut):
             await u.send(good[:cut])
             assert await u.quiet(TIMEOUT_BITS + 15) == b"", f"reply to a frame truncated at {cut}"
         await u.send(good[:4])                                     # too slow: the tail is junk
-        await ClockCycles(dut.clk, CPB * (TIMEOUT_BITS + 5))
+        await clock_cycles(dut.clk, CPB * (TIMEOUT_BITS + 5))
         await u.send(good[4:])
         assert await u.quiet() == b""
         for i in range(1, len(good)):                              # framing error (stop bit low) in byte i
@@ -358,9 +361,9 @@ async def break_condition(dut):
 
     task = cocotb.start_soon(count())
     dut.rx_i.value = 0
-    await ClockCycles(dut.clk, CPB * 41 // 2)
+    await clock_cycles(dut.clk, CPB * 41 // 2)
     dut.rx_i.value = 1
-    await ClockCycles(dut.clk, CPB * 2)
+    await clock_cycles(dut.clk, CPB * 2)
     assert counts == {"valid": 0, "frame_err": 1}, f"after a break: {counts}"
     await u.send(ctl.encode_read(R.ID.addr))
     reply = bytes(b for b, _ in await u.recv(5))
@@ -380,17 +383,17 @@ async def fault_pin(dut):
     await u.write(R.DT, dt)
     g = Gates(dut)
     await u.write(R.CTRL, R.CTRL.encode(en=1))
-    await ClockCycles(dut.clk, 2 * p * 3 + 17)
+    await clock_cycles(dut.clk, 2 * p * 3 + 17)
     assert len(g.edges) > 6 and int(dut.led_fault_o.value) == 0
     dut.fault_ni.value = 0
     await Timer(1, "ns")                                           # mid-clock: combinational gate-off
     assert int(dut.gates.value) == 0 and int(dut.led_fault_o.value) == 1
-    await ClockCycles(dut.clk, 3)
+    await clock_cycles(dut.clk, 3)
     st = R.STATUS.decode(await u.read(R.STATUS))
     assert st["fault"] == 1 and st["tripped"] == 1, st
     await u.write(R.CTRL, R.CTRL.encode(en=1, fault_clear=1))      # pin still low: no effect
     dut.fault_ni.value = 1
-    await ClockCycles(dut.clk, 4 * p)
+    await clock_cycles(dut.clk, 4 * p)
     st = R.STATUS.decode(await u.read(R.STATUS))
     assert st["fault"] == 0 and st["tripped"] == 1, f"latched trip released without fault_clear: {st}"
     assert int(dut.gates.value) == 0 and int(dut.led_fault_o.value) == 1
@@ -400,10 +403,10 @@ async def fault_pin(dut):
     assert int(dut.led_fault_o.value) == 0
     st = R.STATUS.decode(await u.read(R.STATUS))
     assert st["tripped"] == 0 and st["fault"] == 0, st
-    await ClockCycles(dut.clk, 2 * p)
+    await clock_cycles(dut.clk, 2 * p)
     assert g.edges and g.edges[0][0] > c_clr, "no restart after fault_clear"
     g.clear()                                                      # the first pulse may start mid-period
-    await ClockCycles(dut.clk, 2 * p * 6)
+    await clock_cycles(dut.clk, 2 * p * 6)
     check_switching(g.edges, p, dt, snapshot=True)
     g.stop()
 
@@ -429,21 +432,28 @@ async def period_beyond_the_carrier(dut):
     await start_against_model(dut, u, g, core.Inputs(freq=0, m=m, period=p, dt=dt), 3)
     assert R.STATUS.decode(await u.read(R.STATUS))["period_clamp"] == int(want > top)
     await u.write(R.PERIOD, P_RUN)                                  # back in range: the flag goes
-    await ClockCycles(dut.clk, 2 * p + 4 * P_RUN)
+    await clock_cycles(dut.clk, 2 * p + 4 * P_RUN)
     st = R.STATUS.decode(await u.read(R.STATUS))
     assert st["period_clamp"] == 0 and st["running"] == 1, st
     g.stop()
 
 
+# one pytest item per cocotb test (and system variant), the build shared by them (simrun.run_sim)
+def _cases() -> list[str]:
+    from simrun import cocotb_tests
+    return cocotb_tests(__file__)
+
+
+@pytest.mark.parametrize("case", _cases())
 @pytest.mark.parametrize("compact", [0, 1])
-def test_ice40_uart(sim, compact):
+def test_ice40_uart(sim, compact, case):
     from simrun import rtl_sources, run_sim
     srcs = (rtl_sources(Path(os.environ.get("ICE40_RTL_DIR", REPO / "rtl")))
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)})
+            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case)
 
 
 # --------------------------------------------------------------------------- gate level
@@ -463,15 +473,27 @@ def _netlist(compact: int) -> tuple[Path, Path]:
     import ice40flow
     top = "svpwm_ice40_sys"
     out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"
-    ice40flow.run_synth(out, top, ice40flow.BOARDS["icestick" if compact else "icebreaker"],
-                        ice40flow.system_sources(),
-                        params=dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact),
-                        verilog=True)
-    return out / f"{top}_gl.v", cells
+    board = ice40flow.BOARDS["icestick" if compact else "icebreaker"]
+    params = dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
+    srcs = ice40flow.system_sources()
+    # synthesised once for the items of this variant: again only when a source, the board or a parameter
+    # changed (the key), under a lock (pytest-xdist workers)
+    key = hashlib.sha256(repr((top, board, sorted(params.items()), [str(f) for f in srcs])).encode()
+                         + b"".join(Path(f).read_bytes() for f in srcs)).hexdigest()
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        stamp, netlist = out / ".synth_key", out / f"{top}_gl.v"
+        if not (netlist.is_file() and stamp.is_file() and stamp.read_text() == key):
+            stamp.unlink(missing_ok=True)
+            ice40flow.run_synth(out, top, board, srcs, params=params, verilog=True)
+            stamp.write_text(key)
+    return netlist, cells
 
 
+@pytest.mark.parametrize("case", GL_TESTS)
 @pytest.mark.parametrize("compact", [0, 1])
-def test_ice40_uart_gate_level(sim, compact):
+def test_ice40_uart_gate_level(sim, compact, case):
     """The same tests on the netlist the bitstream is made from (Yosys' reading of the RTL, not the
     simulators'): a construct the two read differently fails here (as -FreqWidth'(FreqMax) did).
     break_condition is left out: it probes the UART receiver inside the hierarchy, which the netlist flattens."""
@@ -485,4 +507,4 @@ def test_ice40_uart_gate_level(sim, compact):
             test_module="test_ice40_uart", test_dir=Path(__file__).parent,
             build_name=f"gate_level_c{compact}", defines={"GATE_LEVEL": 1, "NO_ICE40_DEFAULT_ASSIGNMENTS": 1},
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=GL_TESTS)
+            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case)

@@ -14,7 +14,8 @@ import random
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
+from cocotb.triggers import ReadOnly, RisingEdge
+from clocks import clock_cycles
 
 from svpwm_model import fixed
 from svpwm_model import regmap as R
@@ -49,13 +50,13 @@ class TB:
         d.fault.value = 0
         d.sync_in.value = 0
         d.rst_n.value = 0
-        await ClockCycles(d.clk, 1)
+        await clock_cycles(d.clk, 1)
         if self.bus is None:     # see test_svpwm_bus_regs.TB.reset
             from busdrv import AxilBus, WbBus
             self.bus = AxilBus(d) if self.kind == "axil" else WbBus(d, pipelined=(self.kind == "wb"))
-        await ClockCycles(d.clk, 2)
+        await clock_cycles(d.clk, 2)
         d.rst_n.value = 1
-        await ClockCycles(d.clk, 2)
+        await clock_cycles(d.clk, 2)
 
     def cin(self, f: R.Field) -> int:
         return int(getattr(self.core, core_input(f)).value)
@@ -105,9 +106,9 @@ async def status_from_core(dut):
     await tb.wr(R.M, m=0x4000)
     await tb.wr(R.FREQ, freq=100000)
     await tb.wr(R.CTRL, en=1)
-    await ClockCycles(dut.clk, 6 * 200)
+    await clock_cycles(dut.clk, 6 * 200)
     for _ in range(20):                                # compare with the core outputs around each read
-        await ClockCycles(dut.clk, tb.rng.randrange(1, 50))
+        await clock_cycles(dut.clk, tb.rng.randrange(1, 50))
         before = {k: int(getattr(c, v).value) for k, v in RO_MAP.items()}
         cmp_b = int(c.cmp_o.value)
         st = await tb.bus.read(R.STATUS.addr)
@@ -123,23 +124,23 @@ async def status_from_core(dut):
         for name in ("sat", "cfg_err", "period_clamp", "freq_clamp", "fault", "tripped", "locked"):
             assert s[name] == before[f"status_{name}_i"], f"STATUS.{name} {s[name]} != core {before[f'status_{name}_i']}"
     await tb.wr(R.PERIOD, period=10)                   # below MinPeriod: clamped and flagged
-    await ClockCycles(dut.clk, 3 * 200)
+    await clock_cycles(dut.clk, 3 * 200)
     assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["period_clamp"] == 1
     assert await tb.bus.read(R.PERIOD_ACT.addr) == int(c.period_o.value) >= MIN_PERIOD
     dut.fault.value = 1                                # latched trip, cleared by CTRL.fault_clear
-    await ClockCycles(dut.clk, 4)
+    await clock_cycles(dut.clk, 4)
     s = await tb.rd(R.STATUS)
     assert s["fault"] == 1 and s["tripped"] == 1 and int(dut.tripped.value) == 1, s
     dut.fault.value = 0
-    await ClockCycles(dut.clk, 4)
+    await clock_cycles(dut.clk, 4)
     assert (await tb.rd(R.STATUS))["tripped"] == 1, "latched trip released without fault_clear"
     await tb.wr(R.CTRL, en=1, fault_clear=1)
-    await ClockCycles(dut.clk, 4)
+    await clock_cycles(dut.clk, 4)
     s = await tb.rd(R.STATUS)
     assert s["tripped"] == 0 and s["fault"] == 0, f"fault_clear did not release the trip: {s}"
     assert (await tb.rd(R.CTRL))["fault_clear"] == 0
     await tb.wr(R.CTRL, en=1, lock=1)
-    await ClockCycles(dut.clk, 2)
+    await clock_cycles(dut.clk, 2)
     assert (await tb.rd(R.STATUS))["locked"] == 1 and int(c.lock_i.value) == 1
 
 
@@ -153,7 +154,7 @@ async def _m_steps(tb: TB, upd: int) -> None:
     await tb.wr(R.THETA, theta=0x1555)                 # unused in mode FREQ
     await tb.wr(R.M, m=0x2000)
     await tb.wr(R.CTRL, en=1, upd=upd)
-    await ClockCycles(dut.clk, 6 * period)
+    await clock_cycles(dut.clk, 6 * period)
     log: list[tuple[int, int, int, int, int]] = []   # (cmp, update, valley, peak, m_i) per clock
     stop = False
 
@@ -166,10 +167,10 @@ async def _m_steps(tb: TB, upd: int) -> None:
 
     mon = cocotb.start_soon(monitor())
     for _ in range(8):                                 # writes 3..5 periods apart, anywhere in a period
-        await ClockCycles(dut.clk, tb.rng.randrange(3 * 2 * period, 5 * 2 * period))
+        await clock_cycles(dut.clk, tb.rng.randrange(3 * 2 * period, 5 * 2 * period))
         m = tb.rng.choice([0x1000, 0x3000, 0x5000, 0x7000]) + tb.rng.randrange(0, 0x800)
         await tb.wr(R.M, m=m)
-    await ClockCycles(dut.clk, 3 * 2 * period)
+    await clock_cycles(dut.clk, 3 * 2 * period)
     stop = True
     await mon
     changes = [k for k in range(1, len(log)) if log[k][0] != log[k - 1][0]]

@@ -15,8 +15,9 @@ import random
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
+from cocotb.triggers import ReadOnly, RisingEdge
 from cocotb.utils import get_sim_time
+from clocks import clock_cycles
 
 from svpwm_model import regmap as R
 
@@ -52,16 +53,16 @@ class TB:
         d = self.dut
         d.status.value, d.carrier.value, d.period_act.value, d.cmp.value = status, carrier, period_act, cmp
         d.rst_n.value = 0
-        await ClockCycles(d.clk, 1)
+        await clock_cycles(d.clk, 1)
         if self.bus is None:
             # created inside the reset: cocotbext-wishbone's immediate writes at time 0 made the
             # scheduled rst_n = 0 of the same time step get lost on Icarus
             from busdrv import AxilBus, WbBus
             bus = os.environ["SVPWM_BUS"]
             self.bus = AxilBus(d) if bus == "axil" else WbBus(d, pipelined=(bus == "wb"))
-        await ClockCycles(d.clk, 2)
+        await clock_cycles(d.clk, 2)
         d.rst_n.value = 1
-        await ClockCycles(d.clk, 2)
+        await clock_cycles(d.clk, 2)
 
     def port(self, f: R.Field) -> int:
         return int(getattr(self.dut.u_regs, f.port).value)
@@ -292,14 +293,14 @@ async def lock_fault_clear(dut):
 
     mon = cocotb.start_soon(count_fc())
     await tb.bus.write(R.CTRL.addr, R.CTRL.encode(fault_clear=1, en=1))
-    await ClockCycles(d.clk, 3)
+    await clock_cycles(d.clk, 3)
     assert sum(pulses) == 1, f"fault_clear pulse lasted {sum(pulses)} clocks"
     got = R.CTRL.decode(await tb.bus.read(R.CTRL.addr))
     assert got["fault_clear"] == 0 and got["en"] == 1, got
     pulses.clear()
     if tb.bus.name != "axil":         # a write with byte lane 0 disabled does not pulse
         await tb.bus.write(R.CTRL.addr, R.CTRL.encode(fault_clear=1), strb=0xE)
-        await ClockCycles(d.clk, 3)
+        await clock_cycles(d.clk, 3)
         assert sum(pulses) == 0, "fault_clear pulsed without its byte lane"
     mon.cancel()
     assert R.CTRL.decode(await tb.bus.read(R.CTRL.addr))["lock"] == 0

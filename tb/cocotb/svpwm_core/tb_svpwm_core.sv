@@ -141,6 +141,40 @@ module tb_svpwm_core #(
   assign gate_lo_o = u_core.pol_q[1] ? ~gate_lo_pin : gate_lo_pin;
 
   assign mon = {pole_o, gate_lo_o, gate_hi_o};
+
+  // ---- event recorder for svpwm_tb.CoreTB (Python then wakes only where an input changes) ---------
+  // With +svpwm_rec=<file>, writes to <file> (times in ns, values in hex), each line flushed:
+  //   M t mon                                   every change of mon (the last one of a time step last)
+  //   V t cmp sector period running sat         each rising edge of valley_o, values 1 ns after it
+  //   P t cmp running                           each rising edge of peak_o, likewise
+  //   U t                                       each rising edge of update_o, likewise
+  // 1 ns after a rising clock edge every output has settled (what cocotb reads in ReadOnly after the
+  // edge) and nothing else happens until the falling edge, where cocotb writes the inputs.
+  integer rec_fd = 0;
+  string  rec_path;
+  initial if ($value$plusargs("svpwm_rec=%s", rec_path)) begin
+    rec_fd = $fopen(rec_path, "w");
+    if (rec_fd == 0) $fatal(1, "tb_svpwm_core: cannot open %s", rec_path);
+  end
+  always @(mon) if (rec_fd != 0) begin
+    $fwrite(rec_fd, "M %0d %0h\n", $time, mon);
+    $fflush(rec_fd);
+  end
+  always @(posedge valley_o) if (rec_fd != 0) begin
+    #1;
+    $fwrite(rec_fd, "V %0d %0h %0h %0h %0h %0h\n", $time, cmp_o, sector_o, period_o, running_o, sat_o);
+    $fflush(rec_fd);
+  end
+  always @(posedge peak_o) if (rec_fd != 0) begin
+    #1;
+    $fwrite(rec_fd, "P %0d %0h %0h\n", $time, cmp_o, running_o);
+    $fflush(rec_fd);
+  end
+  always @(posedge update_o) if (rec_fd != 0) begin
+    #1;
+    $fwrite(rec_fd, "U %0d\n", $time);
+    $fflush(rec_fd);
+  end
   assign trip_violations_o = trip_violations;
   assign lock_violations_o = lock_violations;
 

@@ -7,6 +7,11 @@ frequency is zero): Minas Fig. 9 and 10 (5.1 Hz and 50 Hz at f_sw = 15.625 kHz),
 running, and a disable mid-period. Besides bit-exactness: Table I sequences, leg safety from the edges,
 an in-RTL per-clock safety checker, and the duty error against the floating-point ideal.
 
+Icarus (~100x slower than Verilator) runs every operating point over a complete but shorter window:
+the same revolutions / transitions with fewer clocks (Fig. 10: P = 256 at 6x the frequency, the same
+315 periods per revolution; other points: a higher frequency, i.e. fewer carrier periods per revolution,
+or fewer periods per step), bit-exact like every run; Verilator runs them in full (ICARUS below).
+
 Two builds: the full core and the compact variant (Compact = 1, the iCEstick's HX1K: FREQ mode, SVPWM,
 valley updates, one serial calculator with a longer lead). Both run every test against the golden model
 (CoreModel(compact=...)); `full_only_inputs` checks that the compact core ignores what it does not have.
@@ -14,12 +19,12 @@ valley updates, one serial calculator with a longer lead). Both run every test a
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import cocotb
+import pytest
 
-from simrun import REPO, rtl_sources, run_sim
+from simrun import cocotb_tests, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import Inputs
@@ -30,6 +35,10 @@ P_VERMA = 1536                        # 48 MHz / (2 * 1536) = 15.625 kHz (Verma;
 DT_1US = 48                           # 1 us dead time at 48 MHz
 FW = fixed.freq_word
 MW = fixed.m_word
+
+
+ICARUS = (getattr(cocotb, "SIM_NAME", None) or "").lower().startswith("icarus")
+F_SCALE = 6 if ICARUS else 1          # Icarus: frequencies x6 (a revolution in 1/6 of the periods)
 
 
 def periods_per_rev(f_hz: float, period: int = P_VERMA) -> int:
@@ -56,9 +65,10 @@ async def check_run(tb: CoreTB, idle: Inputs, inputs, n: int, stop=None, dt_of=N
 async def minas_fig10_50hz(dut):
     """Minas Fig. 10: 50 Hz at 15.6 kHz, m = 0.9, 1 us dead time; fundamental within 0.1 %."""
     tb = CoreTB(dut)
-    u = Inputs(freq=FW(50.0), m=MW(0.9), period=P_VERMA, dt=DT_1US)
+    # Icarus: P / 6 at 6 x 50 Hz, the same 315 periods per revolution (the fundamental is within 0.015 %)
+    u = Inputs(freq=FW(50.0 * F_SCALE), m=MW(0.9), period=P_VERMA // F_SCALE, dt=DT_1US // F_SCALE)
     await tb.reset(u)
-    n = periods_per_rev(50.0)
+    n = periods_per_rev(50.0 * F_SCALE, u.period)
     rtl, exp = await check_run(tb, u, const(u), n)
     amp = line_fundamental(rtl.pole_edges, u.freq, rtl.valley[1] + 1, 1)
     assert abs(amp / 0.9 - 1) < 1e-3, f"line fundamental {amp:.5f} vs command 0.9"
@@ -68,16 +78,17 @@ async def minas_fig10_50hz(dut):
 async def minas_fig9_5hz(dut):
     """Minas Fig. 9: 5.1 Hz at 15.6 kHz, V/f-like m = 0.102 (5.1/50 * 1.0), 1 us dead time.
 
-    One revolution is 3063 carrier periods = 9.4 M clocks. Icarus (~25 k clocks/s here) runs the same
-    3063 periods per revolution with 1/8 of the clocks (P = 192, f = 40.8 Hz), bit-exact against the
+    One revolution is 3063 carrier periods = 9.4 M clocks. Icarus runs one revolution of the same m at
+    P = 256 (above MinPeriod) and 36 x 5.1 Hz: 513 periods, 1/36 of the clocks, bit-exact against the
     model like every run; the 0.1 % fundamental requirement is specified at P = 1536 and is asserted
-    on the Verilator run of Fig. 9 itself. (At P = 192 and m = 0.1, rounding the edges to the nearest
-    clock alone moves the fundamental by ~1 %: the model's ideal-rounded modulator gives 1.04 %.)"""
+    on the Verilator run of Fig. 9 itself (at P = 256 and m = 0.1 rounding the edges to the clock alone
+    moves the fundamental by ~0.2 %)."""
     tb = CoreTB(dut)
-    scale = 8 if cocotb.SIM_NAME.lower().startswith("icarus") else 1
-    u = Inputs(freq=FW(5.1 * scale), m=MW(0.102), period=P_VERMA // scale, dt=DT_1US // scale)
+    scale = 6 if ICARUS else 1
+    f = 5.1 * scale * scale
+    u = Inputs(freq=FW(f), m=MW(0.102), period=P_VERMA // scale, dt=DT_1US // scale)
     await tb.reset(u)
-    rtl, exp = await check_run(tb, u, const(u), periods_per_rev(5.1))
+    rtl, exp = await check_run(tb, u, const(u), periods_per_rev(f, u.period))
     amp = line_fundamental(rtl.pole_edges, u.freq, rtl.valley[1] + 1, 1)
     dut._log.info("line fundamental %.6f vs command 0.102 (%+.4f %%), P = %d", amp, (amp / 0.102 - 1) * 100,
                   u.period)
@@ -87,35 +98,37 @@ async def minas_fig9_5hz(dut):
 
 @cocotb.test()
 async def modulation_sweep(dut):
-    """m = 0, 0.02, 0.5, 1.0 at 200 Hz, one revolution each, no dead time then 5 us dead time."""
+    """m = 0, 0.02, 0.5, 1.0 at 200 Hz (Icarus 1200 Hz), one revolution each, no dead time then 5 us."""
     tb = CoreTB(dut)
     for i, (m, dt) in enumerate(((0.0, 0), (0.02, 0), (0.5, 240), (1.0, 240))):
-        u = Inputs(freq=FW(200.0), m=MW(m), period=P_VERMA, dt=dt)
+        u = Inputs(freq=FW(200.0 * F_SCALE), m=MW(m), period=P_VERMA, dt=dt)
         await tb.reset(u)
-        await check_run(tb, u, const(u), periods_per_rev(200.0))
+        await check_run(tb, u, const(u), periods_per_rev(200.0 * F_SCALE))
 
 
 @cocotb.test()
 async def reverse_and_zero_frequency(dut):
-    """-150 Hz (reverse rotation, all six sectors backwards) and 0 Hz (standing vector)."""
+    """-150 Hz (Icarus -900 Hz; reverse rotation, all six sectors backwards) and 0 Hz (standing vector)."""
     tb = CoreTB(dut)
-    u = Inputs(freq=FW(-150.0), m=MW(0.75), period=P_VERMA, dt=DT_1US)
+    u = Inputs(freq=FW(-150.0 * F_SCALE), m=MW(0.75), period=P_VERMA, dt=DT_1US)
     await tb.reset(u)
-    rtl, _ = await check_run(tb, u, const(u), periods_per_rev(150.0), stop=100)
+    rtl, _ = await check_run(tb, u, const(u), periods_per_rev(150.0 * F_SCALE), stop=100)
     assert sorted(set(rtl.sector)) == [0, 1, 2, 3, 4, 5]
     u0 = Inputs(freq=0, m=MW(0.6), period=P_VERMA, dt=DT_1US)
     tb.set_inputs(u0)
-    rtl0, _ = await check_run(tb, u0, const(u0), 40)
+    rtl0, _ = await check_run(tb, u0, const(u0), 40 // F_SCALE)
     assert len(set(rtl0.cmp)) == 1, "a standing vector must give the same compare values every period"
 
 
 @cocotb.test()
 async def reversal_through_zero(dut):
-    """The frequency ramps +200 Hz -> -200 Hz through zero; the vector turns, stops and turns back."""
+    """The frequency ramps +200 Hz -> -200 Hz (Icarus +-1200 Hz) through zero; the vector turns, stops and
+    turns back."""
     tb = CoreTB(dut)
-    n = 2 * periods_per_rev(200.0)
-    f_of = lambda k: 200.0 - 400.0 * k / (n - 1)
-    idle = Inputs(freq=FW(200.0), m=MW(0.8), period=P_VERMA, dt=DT_1US)
+    f0 = 200.0 * F_SCALE
+    n = 2 * periods_per_rev(f0)
+    f_of = lambda k: f0 - 2 * f0 * k / (n - 1)
+    idle = Inputs(freq=FW(f0), m=MW(0.8), period=P_VERMA, dt=DT_1US)
     await tb.reset(idle)
     rtl, exp = await check_run(tb, idle, lambda k: Inputs(FW(f_of(k)), MW(0.8), P_VERMA, DT_1US), n)
     assert min(exp.theta[1:]) != max(exp.theta[1:])
@@ -123,10 +136,11 @@ async def reversal_through_zero(dut):
 
 @cocotb.test()
 async def period_and_dead_time_change(dut):
-    """Period 1536 -> 1000 -> 2400 -> 64 and dead time 48 -> 0 -> 240 -> 5 while running at 100 Hz."""
+    """Period 1536 -> 1000 -> 2400 -> 64 and dead time 48 -> 0 -> 240 -> 5 while running at 100 Hz, 40 periods
+    each (Icarus: 8)."""
     tb = CoreTB(dut)
     steps = ((1536, 48), (1000, 0), (2400, 240), (64, 5), (1536, 48))
-    n_each = 40
+    n_each = 8 if ICARUS else 40
     sched = [Inputs(FW(100.0), MW(0.85), p, d) for p, d in steps for _ in range(n_each)]
     await tb.reset(sched[0])
     await check_run(tb, sched[0], sched, len(sched))
@@ -168,18 +182,23 @@ async def full_only_inputs(dut):
         assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
 
 
-def test_svpwm_core(sim):
-    # Icarus runs every operating point too (they are short enough), Verilator is ~20x faster.
-    run_sim(sim, toplevel="tb_svpwm_core",
-            sources=rtl_sources() + [Path(__file__).parent / "tb_svpwm_core.sv"],
+# ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two
+# builds (full, compact) are made once per simulator and shared by their items (simrun.run_sim).
+CASES = cocotb_tests(__file__)
+HARNESS = Path(__file__).parent / "tb_svpwm_core.sv"
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_svpwm_core(sim, case):
+    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="default",
-            testcase=os.environ.get("SVPWM_TESTCASE") or None)
+            testcase=case, record=True)
 
 
-def test_svpwm_core_compact(sim):
+@pytest.mark.parametrize("case", CASES)
+def test_svpwm_core_compact(sim, case):
     # the compact variant: the same tests, the same model with compact=True
-    run_sim(sim, toplevel="tb_svpwm_core",
-            sources=rtl_sources() + [Path(__file__).parent / "tb_svpwm_core.sv"],
+    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
             parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
-            testcase=os.environ.get("SVPWM_TESTCASE") or None)
+            testcase=case, record=True)

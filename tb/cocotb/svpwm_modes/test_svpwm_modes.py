@@ -18,8 +18,9 @@ import os
 from pathlib import Path
 
 import cocotb
+import pytest
 
-from simrun import REPO, rtl_sources, run_sim
+from simrun import REPO, cocotb_tests, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
@@ -214,9 +215,10 @@ async def invalid_mode(dut):
     assert int(dut.cfg_err_o.value) == 0
 
 
-def test_svpwm_modes(sim):
+# one pytest item per cocotb test; the full core's build is shared with tb/cocotb/svpwm_core
+@pytest.mark.parametrize("case", cocotb_tests(__file__))
+def test_svpwm_modes(sim, case):
     run_sim(sim, toplevel="tb_svpwm_core",
             sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
-            test_module="test_svpwm_modes", test_dir=Path(__file__).parent, build_name="modes",
-            extra_env={"SVPWM_SIM_NAME": sim},
-            testcase=os.environ.get("SVPWM_TESTCASE") or None)
+            test_module="test_svpwm_modes", test_dir=Path(__file__).parent, build_name="default",
+            extra_env={"SVPWM_SIM_NAME": sim}, testcase=case, record=True)

@@ -20,7 +20,8 @@ from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, Timer, with_timeout
+from cocotb.triggers import FallingEdge, ReadOnly, Timer, with_timeout
+from clocks import clock_cycles
 
 from simrun import REPO, run_sim
 from svpwm_model import fixed
@@ -77,7 +78,7 @@ class AccTB:
     async def fast_forward(self, step, clocks):
         """Constant step for `clocks` clocks without per-clock checks; check the state at the end."""
         self.drive(1, step)
-        await ClockCycles(self.dut.clk, clocks, rising=False)
+        await clock_cycles(self.dut.clk, clocks, rising=False)
         self.state = self.model(self.state, step, clocks)
         assert self.outputs() == self.state, f"after {clocks} x {step}: {self.outputs()} != {self.state}"
 

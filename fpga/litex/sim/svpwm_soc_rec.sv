@@ -8,6 +8,7 @@
 //                (svpwm_wb Pipelined = 0: the request clock is c - 1, ACK is high in c)
 //   F c v        fault pad (active high here) = v from cycle c on
 //   R c v / T c v  running_o / tripped_o = v from cycle c on
+//   H c          heartbeat every 65536 clocks (the log's last cycle advances while the gates are quiet)
 // Plusargs: +rec=FILE (default svpwm_rec.log); +fault_after=N: the fault pad goes high N clocks after
 // running_o first rises (0 = never), for +fault_len=L clocks (default 2000).
 `default_nettype none
@@ -73,6 +74,7 @@ module svpwm_soc_rec (
     end
     if (seen_run && fault_at != 0 && cycle + 1 == fault_at) fault_o <= 1'b1;
     if (seen_run && fault_at != 0 && cycle + 1 == fault_at + fault_len) fault_o <= 1'b0;
+    if (cycle[15:0] == 16'hffff) begin $fwrite(fd, "H %0d\n", cycle); $fflush(fd); end
     cycle <= cycle + 1;
   end
 endmodule

@@ -2,6 +2,8 @@
 # that this Makefile creates from requirements.txt.
 #
 #   make test                 rom-check + model tests + lint + sim (both simulators) + both iCE40 bitstreams
+#                             + the LiteX SoC simulation (soc-sim)
+#   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
 #   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
 
@@ -57,6 +59,7 @@ $(STAMP): requirements.txt
 test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 	@$(MAKE) bitstream-test
+	@$(MAKE) soc-sim
 
 # SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
@@ -113,3 +116,6 @@ include fpga/ice40/ice40.mk
 
 # Register map from SystemRDL: regs, regs-check, lint-bus
 include rdl/regs.mk
+
+# LiteX SoC (VexRiscv + firmware + the core): soc-sim, soc
+include fpga/litex/litex.mk

@@ -42,7 +42,7 @@ from litex.soc.integration.soc_core import SoCCore, get_mem_data  # noqa: E402
 from svpwm_litex import SVPWM_BASE, add_svpwm  # noqa: E402
 from svpwm_model import fixed  # noqa: E402
 
-CPU_TYPE, CPU_VARIANT = "vexriscv", "minimal"
+CPU_TYPE, CPU_VARIANT = "serv", "standard"
 ROM_SIZE = 0x2000           # 8 KiB of EBR (16 of the UP5K's 30 blocks)
 SRAM_SIZE = 0x10000         # 64 KiB (two SPRAM blocks on the UP5K)
 SYS_CLK_HZ = 24_000_000     # iCEBreaker: 12 MHz -> PLL -> 24.000 MHz (fpga/ice40/icebreaker); the sim states it too
@@ -73,7 +73,7 @@ class SVPWMSoC(SoCCore):
         # for the firmware's range checks: the core's MinPeriod (svpwm_core default, model/svpwm_model/fixed.py)
         self.add_constant("SVPWM_MIN_PERIOD", fixed.MIN_PERIOD)
         self.add_constant("SVPWM_LITE_MIN_PERIOD", fixed.LITE_MIN_PERIOD)
-        self.add_constant("UART_POLLING")   # the firmware polls: no interrupt handler, no printf in the ROM
+        self.add_constant("UART_POLLING", check_duplicate=False)   # the firmware polls (no printf in the ROM)
 
     def init_mems(self, **kwargs):
         fw = Path(self.platform.output_dir) / "software" / "firmware" / "firmware.bin"
@@ -197,7 +197,8 @@ def build_icebreaker(out: Path, seed: int) -> int:
     _software(builder)
     builder.build(build_name=name, run=False)
     gw = BUILD / "ice40" / name
-    srcs = [str(s) for s in ice40flow.rtl_sources()] + [str(gw / f"{name}.v")]
+    # the platform's sources in their order: the core's RTL (packages first), the CPU, the SoC's top
+    srcs = [str(Path(gw, f)) for f, *_ in soc.platform.sources]
     return ice40flow.main(["--name", name, "--top", name, "--device", "up5k", "--package", "sg48",
                            "--pcf", str(gw / f"{name}.pcf"), "--freq", str(SYS_CLK_HZ / 1e6),
                            "--seed", str(seed)] + srcs)

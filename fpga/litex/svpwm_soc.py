@@ -62,6 +62,7 @@ class SVPWMSoC(SoCCore):
                          integrated_rom_size=ROM_SIZE,
                          integrated_sram_size=SRAM_SIZE if sim else 0,
                          uart_name="sim" if sim else "serial",
+                         with_ctrl=False,   # no soft reset / scratch / bus-error CSRs: fewer cells, shorter CSR paths
                          **kwargs)
         # ROM contents come from the firmware (init_mems), so the builder does not compile a BIOS
         self.integrated_rom_initialized = True
@@ -74,6 +75,11 @@ class SVPWMSoC(SoCCore):
         self.add_constant("SVPWM_MIN_PERIOD", fixed.MIN_PERIOD)
         self.add_constant("SVPWM_LITE_MIN_PERIOD", fixed.LITE_MIN_PERIOD)
         self.add_constant("UART_POLLING", check_duplicate=False)   # the firmware polls (no printf in the ROM)
+
+    def add_csr_bridge(self, name="csr", origin=None, register=False):
+        # a registered Wishbone -> CSR bridge: SERV's bus arbitration and address decode no longer run
+        # into the CSR banks in the same clock (the UP5K's critical path at 24 MHz without it)
+        super().add_csr_bridge(name=name, origin=origin, register=True)
 
     def init_mems(self, **kwargs):
         fw = Path(self.platform.output_dir) / "software" / "firmware" / "firmware.bin"

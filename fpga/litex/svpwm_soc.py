@@ -1,18 +1,19 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""The svpwm LiteX SoC: VexRiscv (minimal) + ROM with the firmware (sw/firmware, no BIOS) + SRAM + UART
-console + timer0 + the core (svpwm_litex.SVPWM at SVPWM_BASE), for the iCEBreaker and for LiteX's
-Verilator simulation.
+"""The svpwm LiteX SoC: SERV (RV32I) + ROM with the firmware (sw/firmware, no BIOS) + SRAM + UART console +
+timer0 + the core (svpwm_litex.SVPWM at SVPWM_BASE), for the iCEBreaker and for LiteX's Verilator simulation.
 
     python fpga/litex/svpwm_soc.py --target sim         build/litex/sim: firmware + Verilator binary
     python fpga/litex/svpwm_soc.py --target icebreaker  build/ice40/litex_icebreaker: firmware + bitstream
                                                         (fpga/ice40/ice40flow.py: yowasp, fails unless
                                                         timing is met)
 
-Memory map (both targets): ROM 0x0000_0000 (ROM_SIZE, firmware), SRAM 0x1000_0000 (64 KiB; SPRAM on
-the UP5K), svpwm 0x9000_0000 (256 bytes, docs/registers.md), CSRs 0xF000_0000 (UART, timer0, ctrl).
-The firmware is a LiteX software package (its Makefile includes the build's variables.mak); the
-builder compiles picolibc, compiler-rt, libbase and it, and init_mems() puts firmware.bin into the ROM.
+Memory map (both targets): ROM 0x0000_0000 (8 KiB, the firmware), SRAM 0x0100_0000 (64 KiB; SPRAM on the
+UP5K), CSRs 0x8200_0000 (UART, timer0), svpwm 0x9000_0000 (256 bytes, docs/registers.md).
+CPU: SERV, the LiteX CPU that fits beside the full core on the UP5K (VexRiscv minimal: 5394 / 5280 LC).
+The firmware is a LiteX software package (its Makefile includes the build's variables.mak); the builder
+compiles picolibc, compiler-rt, libbase and it, and init_mems() puts firmware.bin into the ROM.
+Restrictions: one clock domain (sys); the simulation's clock is only stated (24 MHz) for the firmware's units.
 """
 from __future__ import annotations
 
@@ -43,7 +44,7 @@ from svpwm_litex import SVPWM_BASE, add_svpwm  # noqa: E402
 from svpwm_model import fixed  # noqa: E402
 
 CPU_TYPE, CPU_VARIANT = "serv", "standard"
-ROM_SIZE = 0x2000           # 8 KiB of EBR (16 of the UP5K's 30 blocks)
+ROM_SIZE = 0x2000           # 8 KiB of EBR (16 of the UP5K's 30 blocks; the core has 6)
 SRAM_SIZE = 0x10000         # 64 KiB (two SPRAM blocks on the UP5K)
 SYS_CLK_HZ = 24_000_000     # iCEBreaker: 12 MHz -> PLL -> 24.000 MHz (fpga/ice40/icebreaker); the sim states it too
 FIRMWARE_DIR = REPO / "sw" / "firmware"

@@ -7,7 +7,8 @@
 // Commands (help lists them): freq HZ, m INDEX, period CLOCKS, fsw HZ, dt US, mode NAME, start, stop,
 // status, clear, ramp MS. A trip (STATUS.tripped) is reported as soon as it happens.
 // Restrictions: one core; registers are written one at a time (32-bit accesses, never byte lanes), so a
-// change of several registers while running may straddle a load point (see rtl/svpwm_wb.sv).
+// change of several registers while running may straddle a load point (see rtl/svpwm_wb.sv). The ROM is
+// 8 KiB (fpga/litex/README.md): a small printf of its own, the UART and timer0 polled (no interrupts).
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>

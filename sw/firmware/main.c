@@ -289,22 +289,30 @@ static int cmd_ramp(int32_t ms) {
   int32_t fa50 = w50 >> (FIELD(CONFIG, FREQ_WIDTH) - 17);
   int32_t slope = fa50 ? (int32_t)muldiv(m, 256, fa50) : 0x10000;
   if (slope > 0xFFFF) return err("VF_SLOPE overflow", 0);
+  uint32_t step = (uint32_t)muldiv(CONFIG_CLOCK_FREQUENCY / 1000, ms, RAMP_STEPS);
+  // step k's word, round(k * w50 / RAMP_STEPS) = (2 k w50 + RAMP_STEPS) / (2 RAMP_STEPS), kept as a
+  // quotient and a remainder and advanced by additions only: on SERV a 64-bit division per step would
+  // take longer than a short ramp's step
+  uint32_t den = 2 * RAMP_STEPS, inc = 2 * (uint32_t)w50, dq = inc / den, dr = inc % den;
+  uint32_t q = 0, r = RAMP_STEPS;                                   // k = 0: (0 + RAMP_STEPS) / den
   REG(FREQ) = 0;
   REG(VF_BOOST) = 0;
   REG(VF_MMAX) = PUT(VF_MMAX, VF_MMAX, m);
   REG(VF_SLOPE) = PUT(VF_SLOPE, VF_SLOPE, slope);
   SETF(CTRL, MODE, 1);
   SETF(CTRL, EN, 1);
-  say("ramp: 0 -> 50 Hz in %d ms, V/f up to m %5\n", ms, (int32_t)muldiv(m, 100000, 0x8000));
-  uint32_t step = (uint32_t)muldiv(CONFIG_CLOCK_FREQUENCY / 1000, ms, RAMP_STEPS);
-  int32_t words[RAMP_STEPS];   // computed first: the 64-bit division takes thousands of clocks here
-  for (int k = 0; k < RAMP_STEPS; k++) words[k] = (int32_t)muldiv(w50, k + 1, RAMP_STEPS);
   timer0_en_write(0);
   timer0_load_write(step);
   timer0_reload_write(step);
   timer0_ev_pending_write(timer0_ev_pending_read());
   timer0_en_write(1);
   for (int k = 1; k <= RAMP_STEPS; k++) {
+    q += dq;
+    r += dr;
+    if (r >= den) {
+      r -= den;
+      q++;
+    }
     while (!(timer0_ev_pending_read() & 1)) {
       if (FIELD(STATUS, TRIPPED)) {
         timer0_en_write(0);
@@ -313,10 +321,11 @@ static int cmd_ramp(int32_t ms) {
       }
     }
     timer0_ev_pending_write(1);
-    SETF(FREQ, FREQ, (uint32_t)words[k - 1]);
+    SETF(FREQ, FREQ, q);
   }
   timer0_en_write(0);
-  say("ramp done: FREQ = %d (%3 Hz)\n", w50, freq_mhz(w50));
+  say("ramp: 0 -> 50 Hz in %d ms, V/f up to m %5: done, FREQ = %d (%3 Hz)\n", ms,
+      (int32_t)muldiv(m, 100000, 0x8000), w50, freq_mhz(w50));
   return 0;
 }
 

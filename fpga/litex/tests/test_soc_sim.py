@@ -311,12 +311,12 @@ def test_soc_fault(soc_factory):
 
 def test_soc_vf_ramp(soc_factory):
     """ramp 20: V/f registers from the m at 50 Hz, then FREQ 0 -> the 50 Hz word in 50 equal steps, one per
-    timer0 period (20 ms / 50), each within the polling loop's latency; pin checker over the ramp."""
+    timer0 period (20 ms / 50) from the start, each within the timer setup and polling latency; pin checker."""
     s = soc_factory()
     exp = configure(s, hz="0")
     n0 = len(s.rec().writes)
     reply = s.cmd("ramp 20")
-    assert reply.startswith("ramp: 0 -> 50 Hz in 20 ms") and "ramp done" in reply, reply
+    assert reply.startswith("ramp: 0 -> 50 Hz in 20 ms, V/f up to m 0.89999: done"), reply
     w = s.rec().writes[n0:]
     w50 = CFG.freq_word(Fraction(50))
     fa50 = w50 >> (fixed.FREQ_WIDTH - 17)
@@ -328,12 +328,12 @@ def test_soc_vf_ramp(soc_factory):
     steps = [(c, d) for c, a, d, _ in w[6:] if a == R.FREQ.addr]
     assert [d for _, d in steps] == [int(ctl.round_half_away(Fraction(w50 * k, 50))) for k in range(1, 51)]
     period = CLK_HZ // 1000 * 20 // 50                     # timer0 reload: 20 ms / 50 steps
-    t0 = w[5][0]                                           # CTRL.en (the timer starts after the message)
-    c1 = steps[0][0]
-    assert c1 > t0 + period
-    for k, (c, _) in enumerate(steps):
-        late = (c - c1) - k * period                       # the timer's ticks are exactly `period` apart;
-        assert -400 < late < 400, f"step {k + 1} at {c}: {late} clocks off the timer0 period {period}"
+    t0 = w[5][0]                                           # CTRL.en; timer0 is started right after it
+    for k, (c, _) in enumerate(steps, 1):
+        # on timer0's grid, not drifting: step k after k periods, late by the timer's setup and the polling
+        # loop only (on SERV 1063 .. 1439 clocks measured; bound 2000 clocks = 83 us)
+        late = c - (t0 + k * period)
+        assert 0 <= late < 2000, f"step {k} at {c}: {late} clocks after t0 + {k} timer0 periods of {period}"
     assert fixed.vf_m(w50, 0, slope, exp["M"]) == exp["M"], "V/f law does not reach m at 50 Hz"
     st = s.cmd("status")
     assert f"(word {w50})" in st and "mode vf" in st and "running 1" in st, st

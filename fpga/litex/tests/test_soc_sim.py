@@ -13,7 +13,8 @@ clock, and drives the fault pad. From that log:
   - a fault on the pad turns the gates off in the same clock and they stay off until the firmware clears
     the trip after the pad is released; the firmware reports the trip on its own and refuses to clear it
     while the pad is active;
-  - the V/f ramp: the V/f registers, the 50 FREQ steps 0 -> 50 Hz at timer0's pace.
+  - the V/f ramp: the V/f registers, the 50 FREQ steps 0 -> 50 Hz at timer0's pace, and its gate edges ==
+    the golden model fed with the register values the core sampled in each carrier period.
 
 Build first: `make soc-sim` (or python fpga/litex/svpwm_soc.py --target sim).
 """
@@ -311,7 +312,8 @@ def test_soc_fault(soc_factory):
 
 def test_soc_vf_ramp(soc_factory):
     """ramp 20: V/f registers from the m at 50 Hz, then FREQ 0 -> the 50 Hz word in 50 equal steps, one per
-    timer0 period (20 ms / 50) from the start, each within the timer setup and polling latency; pin checker."""
+    timer0 period (20 ms / 50) from the start, each within the timer setup and polling latency; the gates
+    during the ramp == the golden model fed with the registers as the core samples them; pin checker."""
     s = soc_factory()
     exp = configure(s, hz="0")
     n0 = len(s.rec().writes)
@@ -337,7 +339,27 @@ def test_soc_vf_ramp(soc_factory):
     assert fixed.vf_m(w50, 0, slope, exp["M"]) == exp["M"], "V/f law does not reach m at 50 Hz"
     st = s.cmd("status")
     assert f"(word {w50})" in st and "mode vf" in st and "running 1" in st, st
-    r = s.rec()
-    rep = check_legs(r.gates, lambda c: exp["DT"])
+    # the whole ramp and 20 carrier periods at 50 Hz against the golden model, edge for edge: the inputs of
+    # carrier period n are the registers as the core reads them, at S - 1 with S = t_(n+1) - SAMPLE_LEAD
+    # (model: Update.sample; valley updates, PERIOD / DT / MP constant: t_n = 2 P n)
+    p = exp["PERIOD"]
+    n = (steps[-1][0] - t0) // (2 * p) + 20
+    r = s.wait_cycle(t0 + 2 * p * (n + 1))
+    inp0 = inputs_of(regs_at(r.writes, t0))
+    assert inp0.period == p and inp0.mode == fixed.MODE_VF
+    assert [c for c, a, *_ in r.writes if c > t0 and a not in (R.FREQ.addr,)] == [], "writes other than FREQ"
+
+    def at_sample(k):
+        return inputs_of(regs_at(r.writes, t0 + 2 * p * (k + 1) - fixed.SAMPLE_LEAD - 1))
+
+    model = core.CoreModel().run(inp0, at_sample, n)
+    got = [(c - t0, x) for c, x in r.gates if t0 <= c < t0 + model.end]
+    assert [e for e in r.gates if e[0] < t0] == [], "gates switched before CTRL.en"
+    assert model.m[-1] == exp["M"] and len(got) > 10 * n, "the ramp did not reach m at 50 Hz in the window"
+    assert got == model.gate_edges, ("gate edges differ from the golden model during the ramp:\n"
+                                     + next(f"first difference at edge {i}: rtl {g} != model {e}"
+                                            for i, (g, e) in enumerate(zip(got + [None] * len(model.gate_edges),
+                                                                           model.gate_edges + [None] * len(got)))
+                                            if g != e))
+    rep = check_legs(got, lambda c: exp["DT"])
     assert rep.ok, rep
-    assert len([g for g in r.gates if g[0] > t0]) > 100

@@ -2,9 +2,11 @@
 # that this Makefile creates from requirements.txt.
 #
 #   make test                 rom-check + model tests + lint + formal + sim (both simulators) + mutate-smoke
-#                             + both iCE40 bitstreams
+#                             + both iCE40 bitstreams + the LiteX SoC: simulation (soc-sim) and iCEBreaker
+#                             bitstream (soc)
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both), slowest tests listed
 #   make mutate [MUTANTS=220] mutation score of the hand-written RTL -> build/mutate/report.md (long)
+#   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
 #   make lint | model-test | rom | rom-check | demo | bench | mutate-smoke | clean | distclean
 
 SHELL := bash
@@ -60,6 +62,8 @@ test: rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 	@$(MAKE) mutate-smoke
 	@$(MAKE) bitstream-test
+	@$(MAKE) soc-sim
+	@$(MAKE) soc BOARD=icebreaker
 
 # SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv;
 # FORMAL_PAR of them at a time (each is one z3 process per task, run one after the other)
@@ -132,3 +136,6 @@ include fpga/ice40/ice40.mk
 
 # Register map from SystemRDL: regs, regs-check, lint-bus
 include rdl/regs.mk
+
+# LiteX SoC (VexRiscv + firmware + the core): soc-sim, soc
+include fpga/litex/litex.mk

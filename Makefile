@@ -137,5 +137,5 @@ include fpga/ice40/ice40.mk
 # Register map from SystemRDL: regs, regs-check, lint-bus
 include rdl/regs.mk
 
-# LiteX SoC (VexRiscv + firmware + the core): soc-sim, soc
+# LiteX SoC (SERV + firmware + the core): soc-sim, soc, soc-console
 include fpga/litex/litex.mk

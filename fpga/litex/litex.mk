@@ -6,6 +6,7 @@
 #
 #   make soc-sim                  firmware + Verilator build of the SoC, then its tests (fpga/litex/tests)
 #                                 (make test runs both targets)
+#   make soc-console              the simulated SoC's console on this terminal (after make soc-sim)
 #   make soc BOARD=icebreaker     firmware + bitstream build/ice40/litex_icebreaker/litex_icebreaker.bin
 #                                 (yowasp, fpga/ice40/ice40flow.py; fails unless timing is met)
 
@@ -13,7 +14,7 @@ LITEX_DIR  := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 RISCV_GCC  ?= riscv64-unknown-elf-gcc
 SOC_BOARDS := icebreaker
 
-.PHONY: soc-sim soc check-soc-tools check-soc-sim-libs
+.PHONY: soc-sim soc soc-console check-soc-tools check-soc-sim-libs
 
 check-soc-tools:
 	@command -v $(RISCV_GCC) >/dev/null || { echo "ERROR: the RISC-V GCC ($(RISCV_GCC)) is not installed; the SoC firmware needs it. Debian: sudo apt-get install gcc-riscv64-unknown-elf" >&2; exit 1; }
@@ -28,6 +29,12 @@ soc-sim: $(STAMP) check-soc-tools check-soc-sim-libs
 	t1=$$(date +%s); \
 	$(PYTEST) -p no:cacheprovider $(LITEX_DIR)/tests $(PYTEST_ARGS); \
 	t2=$$(date +%s); echo "soc-sim: build $$((t1 - t0)) s, tests $$((t2 - t1)) s"
+
+# the simulated SoC with its console on this terminal (after make soc-sim)
+soc-console:
+	@test -x build/litex/sim/gateware/obj_dir/Vsim || { echo "ERROR: run make soc-sim first" >&2; exit 1; }
+	@echo "==> the firmware's console (help lists the commands); Ctrl-C ends the simulation"
+	@cd build/litex/sim/gateware && trap 'stty sane 2>/dev/null || true' EXIT INT TERM && obj_dir/Vsim +rec=/dev/null
 
 soc: $(STAMP) check-soc-tools
 	@case " $(SOC_BOARDS) " in *" $(BOARD) "*) ;; *) echo "ERROR: no LiteX SoC for BOARD=$(BOARD) (boards: $(SOC_BOARDS))" >&2; exit 1;; esac

@@ -27,7 +27,7 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parents[1]
 sys.path[:0] = [str(HERE), str(REPO / "model"), str(REPO / "fpga" / "ice40")]
 
-from migen import ClockDomain, Instance, Module, Record, Signal  # noqa: E402
+from migen import ClockDomain, Instance, Record, Signal  # noqa: E402
 
 from litex.build.generic_platform import IOStandard, Misc, Pins, Subsignal  # noqa: E402
 from litex.build.lattice import LatticeiCE40Platform  # noqa: E402
@@ -40,7 +40,7 @@ from litex.soc.integration.builder import Builder  # noqa: E402
 from litex.soc.integration.soc import SoCRegion  # noqa: E402
 from litex.soc.integration.soc_core import SoCCore, get_mem_data  # noqa: E402
 
-from svpwm_litex import SVPWM_BASE, add_svpwm  # noqa: E402
+from svpwm_litex import add_svpwm  # noqa: E402
 from svpwm_model import fixed  # noqa: E402
 
 CPU_TYPE, CPU_VARIANT = "serv", "standard"

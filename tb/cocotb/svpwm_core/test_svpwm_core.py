@@ -192,7 +192,7 @@ HARNESS = Path(__file__).parent / "tb_svpwm_core.sv"
 def test_svpwm_core(sim, case):
     run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="default",
-            testcase=case, record=True)
+            testcase=case, record=True, vpi_top_only=True)
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -201,4 +201,4 @@ def test_svpwm_core_compact(sim, case):
     run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
             parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
-            testcase=case, record=True)
+            testcase=case, record=True, vpi_top_only=True)

@@ -426,6 +426,9 @@ def main(argv=None) -> int:
         muts = [ran.get(m.id) or Mutant(**{k: v for k, v in previous[m.id].items() if k != "key"})
                 if m.id in ran or m.id in previous else m for m in keep]
         muts = [m for m in muts if m.status]
+    for m in muts:                       # a survivor shown equivalent since it ran
+        if m.status == "survived" and m.key in equiv:
+            m.status, m.by = "equivalent", equiv[m.key]["why"]
     if args.smoke:
         shutil.rmtree(OUT, ignore_errors=True)
         OUT.mkdir(parents=True)

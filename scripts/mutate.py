@@ -70,7 +70,7 @@ UNIT = {
 }
 CORE_ITEMS = [f"{CORE_FAST}[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
 COMPACT_ITEMS = [f"{CORE_FAST}_compact[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
-SYSTEM = ["tb/cocotb/svpwm_modes", "tb/cocotb/svpwm_core/test_svpwm_core.py", "tb/cocotb/svpwm_sync",
+SYSTEM = [f"{CORE_FAST}[icarus-reset_mid_run]", "tb/cocotb/svpwm_modes", "tb/cocotb/svpwm_core/test_svpwm_core.py", "tb/cocotb/svpwm_sync",
           "tb/cocotb/svpwm_bus", "tb/cocotb/svpwm_stress", "tb/cocotb/ice40_uart/test_ice40_uart.py::test_ice40_uart"]
 
 

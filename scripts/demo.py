@@ -106,7 +106,7 @@ def run_points(sim: str, points: list[dict], out_dir: Path, build_name: str = "d
                        sources=simrun.rtl_sources() + [HARNESS],
                        test_module="demo_runs", test_dir=TEST_DIR, build_name=build_name,
                        extra_env={"SVPWM_DEMO_POINTS": json.dumps(points), "SVPWM_DEMO_OUT": str(out_dir)},
-                       record=True)
+                       record=True, vpi_top_only=True)
     except pytest.fail.Exception as e:          # run_sim reports failures with pytest.fail
         err = str(e)
     except SystemExit as e:

@@ -152,6 +152,7 @@ def run_sim(
     includes: Sequence[str | Path] = (),
     extra_build_args: Sequence[str] = (),
     record: bool = False,
+    vpi_top_only: bool = False,
 ) -> Path:
     """Build `sources` with `sim` and run cocotb `test_module` (found in
     `test_dir`) against `toplevel`.  Fails the calling pytest test unless at
@@ -159,6 +160,10 @@ def run_sim(
 
     record: pass the harness an event-record file, +svpwm_rec=<file> (and $SVPWM_REC to the cocotb
     test), one per pytest item (tb_svpwm_core.sv: svpwm_tb.CoreTB reads its edges from it).
+
+    vpi_top_only: Verilator: only the toplevel's own signals are visible to cocotb (a Verilator config file
+    instead of cocotb's --public-flat-rw, which keeps every signal of the design and ~3x slows the core);
+    for harnesses whose tests touch nothing below the toplevel.
 
     timing_harness: the harness uses SV delays (`always #5`) -> Verilator
     needs --timing.  Set False for a pure-RTL toplevel clocked from cocotb.
@@ -203,6 +208,22 @@ def run_sim(
         extra_env["SVPWM_REC"] = str(rec)
 
     runner = get_runner(sim)
+    if sim == "verilator" and vpi_top_only:
+        vlt = build_dir / "vpi_top_only.vlt"
+        text = f'`verilator_config\npublic_flat_rw -module "{toplevel}" -var "*"\n'
+        if not vlt.is_file() or vlt.read_text() != text:      # atomically: other items may be reading it
+            tmp = vlt.with_suffix(f".{os.getpid()}.tmp")
+            tmp.write_text(text)
+            os.replace(tmp, vlt)
+        srcs = srcs + [vlt]
+        build_command = runner._build_command
+
+        def _build_command():
+            cmds = build_command()
+            cmds[0] = [a for a in cmds[0] if a != "--public-flat-rw"]
+            return cmds
+
+        runner._build_command = _build_command
     incs = [Path(i) if Path(i).is_absolute() else REPO / i for i in includes]
     key = build_key(sim, toplevel, srcs, incs, parameters, defines, build_args, waves)
     # One build per configuration, reused by every item that runs it (pytest-xdist workers included):

@@ -221,4 +221,4 @@ def test_svpwm_modes(sim, case):
     run_sim(sim, toplevel="tb_svpwm_core",
             sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
             test_module="test_svpwm_modes", test_dir=Path(__file__).parent, build_name="default",
-            extra_env={"SVPWM_SIM_NAME": sim}, testcase=case, record=True)
+            extra_env={"SVPWM_SIM_NAME": sim}, testcase=case, record=True, vpi_top_only=True)

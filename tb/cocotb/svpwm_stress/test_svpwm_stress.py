@@ -169,4 +169,5 @@ async def random_stress(dut):
 def test_svpwm_stress(sim):
     run_sim(sim, toplevel="tb_svpwm_core",
             sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
-            test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="default")
+            test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="default",
+            vpi_top_only=True)

@@ -342,8 +342,8 @@ module svpwm_core #(
   );
 
   // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow), registered:
-  // one clock after freq_q, i.e. from the calculator's first step on (its programs read it at step 3 at
-  // the earliest: model/tests/test_calc_prog.py checks it)
+  // one clock after freq_q, i.e. from the calculator's first step on (its programs read it in step 1 at
+  // the earliest, as the operand of step 2: model/tests/test_calc_prog.py checks it)
   logic [FreqWidth-1:0] fmag;
   logic [15:0]          fabs_d, fabs_q;
 

@@ -20,8 +20,9 @@
 // svpwm_pkg::calc_latency(0, Dsp)).
 // Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
 // until done_o (the core's sampled registers do), except fabs_i, period_i and thr_i, which may arrive one
-// clock after start_i (read from step 1 on: model/tests/test_calc_prog.py); start_i is ignored while busy_o; sector_o, cmp_o, sat_o
-// and err_o are the results in the done_o clock only (they change while busy_o); period_i >= 2 thr_i.
+// clock after start_i (read from step 1 on: model/tests/test_calc_prog.py); start_i is ignored while
+// busy_o; sector_o, cmp_o, sat_o and err_o are the results in the done_o clock only (they change while
+// busy_o); period_i >= 2 thr_i.
 `default_nettype none
 
 module svpwm_calc #(

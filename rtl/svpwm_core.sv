@@ -559,8 +559,8 @@ module svpwm_core #(
       .en_i    (trip_sync ? safe_lo_q : (run && pole_valid)),
       .brake_i (brake),
       .pole_i  (pole[ph]),
-      .dt_i    (dt_q),
-      .mp_i    (mp_q),
+      .dt_i    (dt_d),              // the next clock's dead time: deadtime compares a clock ahead
+      .mp_i    (mp_d),
       .hi_o    (hi_req[ph]),
       .lo_o    (lo_req[ph])
     );

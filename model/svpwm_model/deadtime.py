@@ -9,6 +9,8 @@ The FSM per leg (state: hi, lo, cnt = clocks the state has lasted, this clock in
 * a gate is on and the pole asks for the other side: once cnt >= max(dt, mp) the gate turns off
   (minimum on-time); with dt == 0 the other gate turns on on the same clock edge.
 * both gates off: once cnt >= dt the wanted gate turns on (dead time dt).
+* cnt is 0 only in the first clock after reset, and nothing is "held" then, even with dt == 0 (the RTL
+  precomputes its compares a clock ahead; in that clock it has none).
 
 Times are clock-cycle indices; a value "at cycle c" is the register value during cycle c.
 """
@@ -32,7 +34,7 @@ class LegState:
 def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0) -> LegState:
     """One clock of the FSM (the per-clock reference; mirrors the always_comb of rtl/deadtime.sv)."""
     hi, lo = s.hi, s.lo
-    held = s.cnt >= dt
+    held = s.cnt >= max(dt, 1)
     held_on = held and s.cnt >= mp
     if tgt == OFF:
         hi, lo = 0, 0
@@ -85,9 +87,9 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
             elif s.hi and tgt == BRAKE:
                 dec = c
             elif s.hi or s.lo:                         # minimum on-time, then off (or swap)
-                dec = c + max(0, max(dt, mp) - s.cnt)
+                dec = c + max(0, max(dt, mp, 1) - s.cnt)
             else:                                      # dead time, then on
-                dec = c + max(0, dt - s.cnt)
+                dec = c + max(0, max(dt, 1) - s.cnt)
             if dec is None or dec >= c_next:
                 s.cnt = min(s.cnt + (c_next - c), sat)
                 c = c_next

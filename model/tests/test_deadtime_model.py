@@ -135,12 +135,13 @@ def test_pulse_dt_plus_one_stretched(dt):
 
 def test_dt_zero_swaps_same_clock():
     """dt = 0: the gates swap on one clock edge (never both on, never both off) and follow the pole
-    one clock later, however short the pulse."""
+    one clock later, however short the pulse. In the first clock after reset nothing is held yet: the
+    first gate turns on one clock later."""
     rng = random.Random(3)
     tgt = [rng.choice((LO, HI)) for _ in range(500)]
     out = simulate_cycles(tgt, [0] * len(tgt), SAT10)
-    assert out[0] == (0, 0)
-    for k, t in enumerate(tgt):
+    assert out[0] == (0, 0) and out[1] == (0, 0)
+    for k, t in enumerate(tgt[1:], start=1):
         assert out[k + 1] == ((1, 0) if t == HI else (0, 1))
     ev, _ = simulate_events(to_changes(tgt, [0] * len(tgt)), len(tgt), SAT10)
     swaps = [e for e in ev[1:]]

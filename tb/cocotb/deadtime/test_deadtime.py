@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """deadtime against the golden model svpwm_model.deadtime.simulate_cycles (exact, ==, every clock).
 
-Inputs are driven per clock (en_i, pole_i, dt_i); the model's target is OFF while en_i is low, else HI /
-LO from pole_i; its saturation is 2^DtWidth - 1 (the RTL counter's all-ones reset value). Sequences are
+Inputs are driven per clock (en_i, pole_i; dt_i and mp_i one clock ahead, as the RTL reads them); the
+model's target is OFF while en_i is low, else HI / LO from pole_i; its saturation is 2^DtWidth - 1 (the RTL counter's all-ones reset value). Sequences are
 seeded random pole pulses shorter than, equal to and just longer than dt (and long ones), en_i drops
 (also mid-pulse), dt = 0 (complementary, same-edge swap), dt = 2^DtWidth - 1 and dt changing while
 running. Besides model equality every trace is checked directly: never both gates on; a gate turns on
@@ -47,12 +47,14 @@ class DtTB:
         # idle (en_i low) until the dead-time counter has saturated: the schedule starts "off for long"
         # (test_reset_turn_off checks the reset state itself)
         await clock_cycles(d.clk, self.max + 1)
+        d.dt_i.value = sched[0][2]          # dt_i / mp_i are read one clock ahead: the ports carry the
+        d.mp_i.value = sched[0][4]          # values in force in the next clock
         await FallingEdge(d.clk)
         tgt = [OFF if not en else BRAKE if brake else (HI if pole else LO) for en, pole, _, brake, _ in sched]
         exp = simulate_cycles(tgt, [x[2] for x in sched], self.max, LegState(0, 0, self.max),
                               mp=[x[4] for x in sched])
         trace = []
-        for k, (en, pole, dt, brake, mp) in enumerate(sched):
+        for k, (en, pole, _, brake, _) in enumerate(sched):
             got = (int(d.hi_o.value), int(d.lo_o.value))
             assert got == exp[k], (f"{what} clock {k}: RTL (hi, lo) = {got}, model {exp[k]}; inputs (en, pole, dt) "
                                    f"from clock {max(0, k - 4)}: {sched[max(0, k - 4):k + 1]}")
@@ -60,8 +62,9 @@ class DtTB:
             d.en_i.value = en
             d.brake_i.value = brake
             d.pole_i.value = pole
-            d.dt_i.value = dt
-            d.mp_i.value = mp
+            nxt = sched[min(k + 1, len(sched) - 1)]
+            d.dt_i.value = nxt[2]
+            d.mp_i.value = nxt[4]
             await FallingEdge(d.clk)
         got = (int(d.hi_o.value), int(d.lo_o.value))
         assert got == exp[-1], f"{what} last clock: RTL {got}, model {exp[-1]}"
@@ -117,10 +120,11 @@ def random_sched(rng: random.Random, dt_of, n_seg: int, max_len: int):
 
 @cocotb.test()
 async def reset_turn_off(dut):
-    """A reset in mid-pulse is a turn-off: after its release the other gate waits the full dead time."""
+    """A reset in mid-pulse is a turn-off: after its release the other gate waits the full dead time
+    (with dt = 0 one clock: nothing is held in the first clock after reset)."""
     tb = DtTB(dut)
     d = dut
-    for dt in (3, min(40, tb.max)):
+    for dt in (0, 3, min(40, tb.max)):
         d.dt_i.value = dt
         d.mp_i.value = 0
         d.brake_i.value = 0
@@ -134,7 +138,7 @@ async def reset_turn_off(dut):
         await FallingEdge(d.clk)
         assert str(d.hi_o.value) == "1", (f"dt={dt}: hi {d.hi_o.value} lo {d.lo_o.value} en {d.en_i.value} "
                                           f"brake {d.brake_i.value} pole {d.pole_i.value} dt {d.dt_i.value} "
-                                          f"mp {d.mp_i.value} rst {d.rst_ni.value} cnt {d.u_dut.cnt_q.value}")
+                                          f"mp {d.mp_i.value} rst {d.rst_ni.value} cnt+1 {d.u_dut.cnt1_q.value}")
         d.rst_ni.value = 0                          # reset while the high side is on
         await FallingEdge(d.clk)
         assert (int(d.hi_o.value), int(d.lo_o.value)) == (0, 0)
@@ -147,7 +151,7 @@ async def reset_turn_off(dut):
             assert got == exp[k], f"dt={dt} clock {k} after reset: RTL {got}, model {exp[k]}"
             await FallingEdge(d.clk)
         first_on = exp.index((0, 1))
-        assert first_on == dt + 1, first_on
+        assert first_on == max(dt, 1) + 1, first_on     # nothing is held in the first clock after reset
 
 
 @cocotb.test()

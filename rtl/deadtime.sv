@@ -39,10 +39,10 @@ module deadtime #(
   end
 
   // cnt = clocks the gate state has been unchanged, this one included (saturating at 2^DtWidth - 1;
-  // 0 only in the clock after reset). The register holds cnt + 1, the count the next clock has if the
-  // state stays (saturated: 2^DtWidth, still >= every dead time).
+  // 0 only in the clock after reset). The register holds the count the NEXT clock has if the state
+  // stays: min(cnt + 1, 2^DtWidth - 1).
   logic               hi_d, hi_q, lo_d, lo_q, chg;
-  logic [DtWidth:0]   cnt1_d, cnt1_q;
+  logic [DtWidth-1:0] cnt1_d, cnt1_q;
   logic               held_d, held_q;         // cnt >= dt and cnt >= 1: the present state has lasted dt
   logic               held_on_d, held_on_q;   // ... and cnt >= mp (the minimum on-time is served)
   logic               dtz_d, dtz_q;           // dt == 0 (a gate swaps straight to the other)
@@ -73,9 +73,9 @@ module deadtime #(
   // the next clock's flags: its count is 1 after a change, else cnt1_q (both compares run in parallel
   // with the decision above, which only selects)
   always_comb begin
-    cnt1_d    = chg ? (DtWidth + 1)'(2) : cnt1_q[DtWidth] ? cnt1_q : cnt1_q + 1'b1;
-    held_d    = chg ? (dt_i <= DtWidth'(1)) : ({1'b0, dt_i} <= cnt1_q);
-    held_on_d = held_d && (chg ? (mp_i <= DtWidth'(1)) : ({1'b0, mp_i} <= cnt1_q));
+    cnt1_d    = chg ? ((DtWidth > 1) ? DtWidth'(2) : DtWidth'(1)) : (&cnt1_q) ? cnt1_q : cnt1_q + 1'b1;
+    held_d    = chg ? (dt_i >> 1) == '0 : (dt_i <= cnt1_q);
+    held_on_d = held_d && (chg ? (mp_i >> 1) == '0 : (mp_i <= cnt1_q));
     dtz_d     = (dt_i == '0);
   end
 
@@ -83,7 +83,7 @@ module deadtime #(
     if (!rst_ni) begin
       hi_q      <= 1'b0;
       lo_q      <= 1'b0;
-      cnt1_q    <= (DtWidth + 1)'(1);    // cnt = 0: a reset is a turn-off, the dead time runs from its release
+      cnt1_q    <= DtWidth'(1);          // cnt = 0: a reset is a turn-off, the dead time runs from its release
       held_q    <= 1'b0;
       held_on_q <= 1'b0;
       dtz_q     <= 1'b0;                 // (read only while a gate is on)
@@ -104,37 +104,39 @@ module deadtime #(
   logic f_past_valid = 1'b0;
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
-  // the dead time and minimum pulse in force (the ports one clock late), and the count itself
-  logic [DtWidth-1:0] f_dt_q, f_mp_q, f_cnt;
+  // the dead time and minimum pulse in force (the ports one clock late), and the count itself (the
+  // counter the flags replace: cnt_q >= dt_i of the earlier design)
+  logic [DtWidth-1:0] f_dt_q, f_mp_q, f_cnt_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      f_dt_q <= '0;
-      f_mp_q <= '0;
+      f_dt_q  <= '0;
+      f_mp_q  <= '0;
+      f_cnt_q <= '0;
     end else begin
-      f_dt_q <= dt_i;
-      f_mp_q <= mp_i;
+      f_dt_q  <= dt_i;
+      f_mp_q  <= mp_i;
+      f_cnt_q <= chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
     end
   end
-  assign f_cnt = DtWidth'(cnt1_q - 1'b1);
   // the precomputed flags are the compares they replace
-  always_comb assert (cnt1_q != '0 && cnt1_q <= {1'b1, {DtWidth{1'b0}}});
-  always_comb assert (held_q == (f_cnt != '0 && f_cnt >= f_dt_q));
-  always_comb assert (held_on_q == (held_q && f_cnt >= f_mp_q));
+  always_comb assert (cnt1_q == ((&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1));
+  always_comb assert (held_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb assert (held_on_q == (held_q && f_cnt_q >= f_mp_q));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (dtz_q == (f_dt_q == '0));
   // never both gates of the leg on
   always_comb assert (!(hi_q && lo_q));
   // a gate turns on only after both were off for the dead time in force (or swaps when it is 0)
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && hi_q && !$past(hi_q))
-    assert ($past(f_dt_q) == '0 || (!$past(lo_q) && $past(f_cnt) >= $past(f_dt_q)));
+    assert ($past(f_dt_q) == '0 || (!$past(lo_q) && $past(f_cnt_q) >= $past(f_dt_q)));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && lo_q && !$past(lo_q))
-    assert ($past(f_dt_q) == '0 || (!$past(hi_q) && $past(f_cnt) >= $past(f_dt_q)));
+    assert ($past(f_dt_q) == '0 || (!$past(hi_q) && $past(f_cnt_q) >= $past(f_dt_q)));
   // every on-pulse lasts max(dt, mp) unless cut by en_i low or (high side) by braking
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !hi_q && $past(hi_q)
                                  && $past(en_i) && !$past(brake_i))
-    assert ($past(f_cnt) >= $past(f_dt_q) && $past(f_cnt) >= $past(f_mp_q));
+    assert ($past(f_cnt_q) >= $past(f_dt_q) && $past(f_cnt_q) >= $past(f_mp_q));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !lo_q && $past(lo_q)
                                  && $past(en_i))
-    assert ($past(f_cnt) >= $past(f_dt_q) && $past(f_cnt) >= $past(f_mp_q));
+    assert ($past(f_cnt_q) >= $past(f_dt_q) && $past(f_cnt_q) >= $past(f_mp_q));
   always_comb cover (hi_q && f_dt_q > DtWidth'(2) && f_mp_q > f_dt_q);
   always_comb cover (lo_q && f_dt_q > DtWidth'(2));
   always_comb cover (lo_q && brake_i && f_dt_q > DtWidth'(2));

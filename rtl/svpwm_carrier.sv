@@ -33,8 +33,10 @@ module svpwm_carrier #(
   logic                peak_d, peak_q;     // registered peak detect (keeps the compare off later paths)
   logic [CntWidth-1:0] pm1_d, pm1_q;       // period - 1, registered with the period (no subtractor)
   logic                top;                // count == period - 1
+  logic                ld_d, ld_q;         // count == 1 counting down (the last clock before a valley),
+                                           // registered: the load strobe comes from a flip-flop
 
-  assign load_o = !run_i || (!up_q && count_q == CntWidth'(1));
+  assign load_o = !run_i || ld_q;
 
   always_comb begin
     count_d  = count_q;
@@ -48,9 +50,11 @@ module svpwm_carrier #(
     end else begin
       count_d = count_q + {{(CntWidth-1){!up_q}}, 1'b1};   // +1 up, -1 down: one adder
       if (up_q && top) up_d = 1'b0;
-      if (!up_q && count_q == CntWidth'(1))   up_d = 1'b1;
+      if (ld_q)        up_d = 1'b1;       // count == 1, down
     end
     peak_d = run_i && up_q && top;          // next clock: count == period, down
+    // next clock: count == 1, down (from 2 down, or from the peak of a one-clock half period)
+    ld_d   = run_i && (up_q ? (top && pm1_q == '0) : (count_q == CntWidth'(2)));
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -60,12 +64,14 @@ module svpwm_carrier #(
       period_q <= CntWidth'(1);
       pm1_q    <= '0;
       peak_q   <= 1'b0;
+      ld_q     <= 1'b0;
     end else begin
       count_q  <= count_d;
       up_q     <= up_d;
       period_q <= period_d;
       pm1_q    <= pm1_d;
       peak_q   <= peak_d;
+      ld_q     <= ld_d;
     end
   end
 
@@ -89,6 +95,7 @@ module svpwm_carrier #(
     assert (count_q == '0 && up_q);
   always_comb if (rst_ni) assert (peak_o == (run_i && !up_q && count_q == period_q));
   always_comb if (rst_ni) assert (pm1_q == period_q - 1'b1);
+  always_comb if (rst_ni) assert (ld_q == (!up_q && count_q == CntWidth'(1)));
   always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
 `endif
 

@@ -4,7 +4,8 @@
 // both gates have been off for dt_i clocks (the WFG dead-time generator of Minas sec. III-A). Every
 // gate on-pulse lasts at least max(dt_i, mp_i) clocks (a gate turned on is held until then), and every
 // off-gap between two on-pulses of the same gate lasts at least dt_i clocks, so no runt pulse reaches a
-// gate. (svpwm_minpulse already keeps the pole pulses long enough; this is the last-stage guarantee.)
+// gate. (svpwm_calc's minimum-pulse rule already keeps the pole pulses long enough; this is the
+// last-stage guarantee.)
 // en_i low turns both gates off on the next clock, whatever the state (safety before pulse length).
 // Reset turns both gates off and the dead time counts from its release, so a reset in mid-pulse
 // is followed by the full dead time too.
@@ -12,9 +13,10 @@
 // clock, the low side turns on once both have been off for dt_i -- braking never skips the dead time.
 // dt_i = 0: complementary gates switch on the same clock edge (no dead time, still never both on).
 // dt_i and mp_i are read ONE CLOCK AHEAD: the values on the ports in clock n are in force in clock n + 1
-// (the core passes its dead-time register's next value). The module compares its counter with them a
-// clock early, so its decision reads only flip-flops ("held" flags, not a 10-bit compare). In the first
-// clock after reset no gate turns on (nothing is held yet, whatever dt_i).
+// (svpwm_core passes its dead-time registers, so a new dead time reaches the legs one clock after the
+// valley). The module compares its counter with them a clock early, so its decision reads only
+// flip-flops ("held" flags, not a 10-bit compare). In the first clock after reset no gate turns on
+// (nothing is held yet, whatever dt_i).
 // Parameters: DtWidth - dead-time / minimum-pulse width in bits (max 2^DtWidth - 1 clocks).
 // Latency: one clock from pole_i to a turn-off, 1 + dt clocks to the complementary turn-on (dt in force).
 // Model: model/svpwm_model/deadtime.py (step_cycle, simulate_events).

@@ -27,8 +27,9 @@
 // vf_*, dpwm_i, mode_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
 // calculator's program + load 1: 215, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
-// sampled there before every valley (period_i as it was one clock earlier) and take effect at it; a changed period, dead time or minimum
-// pulse forces an update at that valley. Latency from a reference to the gates: at most a half carrier
+// sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and
+// mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an update at
+// that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
 // time to a turned-on gate. freq_i steps the angle from the sample on. After en_i rises the gates stay
 // off until the first update; en_i low turns all gates off on the next clock and aborts a computation.
@@ -559,8 +560,8 @@ module svpwm_core #(
       .en_i    (trip_sync ? safe_lo_q : (run && pole_valid)),
       .brake_i (brake),
       .pole_i  (pole[ph]),
-      .dt_i    (dt_d),              // the next clock's dead time: deadtime compares a clock ahead
-      .mp_i    (mp_d),
+      .dt_i    (dt_q),              // deadtime reads them a clock ahead: a new dead time and minimum
+      .mp_i    (mp_q),              // pulse act on the gates from the clock after the valley
       .hi_o    (hi_req[ph]),
       .lo_o    (lo_req[ph])
     );

@@ -18,7 +18,8 @@ Timeline (see README "Timing"):
   (default: inputs(n)) during its up half (peak sample). Period 0 runs with the idle inputs.
 * pole x is high during [t_n + C_up + 1, t_n + P_n + 1) if C_up < P_n and [t_n + P_n + 1,
   t_n + 2 P_n - C_dn + 1) if C_dn < P_n, C_up / C_dn the values active at the valley / the peak.
-* gates: rtl/deadtime.sv per leg (model: deadtime.py), target OFF until the clock after the first update.
+* gates: rtl/deadtime.sv per leg (model: deadtime.py), target OFF until the clock after the first update;
+  dt_{n+1} and mp_{n+1} act on the gates from t_{n+1} + 1 (the legs read the core's registers a clock ahead).
 """
 from __future__ import annotations
 
@@ -268,13 +269,14 @@ class CoreModel:
                 lst += [(a, 1), (b, 0)]
             pole_ch[ph] = [(c, v) for c, v in lst if c < end]
         r.pole_edges = _merge(pole_ch, 3)
-        # ---- gates: target per leg, piecewise constant; dead time and minimum pulse change at valleys ----
+        # ---- gates: target per leg, piecewise constant; dead time and minimum pulse change one clock
+        # after each valley (rtl/deadtime.sv reads the core's dt_q / mp_q a clock ahead) ----
         first = [x.load for x in r.updates if stop_cycle is None or x.load <= stop_cycle]
         valid_from = first[0] + 1 if first else end          # pole_valid_q
         n_val = len(r.dt)
         gate_ch: dict[int, list[tuple[int, int]]] = {}
         for ph in range(3):
-            times = {0, valid_from} | {c for c, _ in pole_ch[ph]} | set(r.valley[:n_val])
+            times = {0, valid_from} | {c for c, _ in pole_ch[ph]} | {v + 1 for v in r.valley[:n_val]}
             if stop_cycle is not None:
                 times |= {r.valley[-1], stop_cycle}
             times = sorted(x for x in times if 0 <= x < end)
@@ -288,7 +290,7 @@ class CoreModel:
                     tgt = OFF
                 else:
                     tgt = HI if pv else LO
-                k = bisect.bisect_right(r.valley, c) - 1
+                k = max(bisect.bisect_right(r.valley, c - 1) - 1, 0)
                 dt = r.dt[k] if k < n_val else dt_cur
                 mp = r.mp[k] if k < n_val else mp_cur
                 changes.append((c, tgt, dt, mp))

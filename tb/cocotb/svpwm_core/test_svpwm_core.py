@@ -148,6 +148,19 @@ async def period_and_dead_time_change(dut):
 
 
 @cocotb.test()
+async def dead_time_change_at_valley(dut):
+    """m = 1 (compare values snapped to dt + mp near each phase's minimum, so gate decisions fall on the
+    valley clock) with the dead time and minimum pulse changing at every valley: a new dead time reaches
+    the legs one clock after the valley. Two revolutions at 400 Hz, P = 600 (Icarus: one)."""
+    tb = CoreTB(dut)
+    steps = ((600, 6, 0), (600, 23, 0), (600, 9, 4), (600, 31, 0), (600, 17, 2))
+    n = periods_per_rev(400.0, 600) * (1 if ICARUS else 2)
+    sched = [Inputs(FW(400.0), MW(1.0), *steps[k % len(steps)]) for k in range(n)]
+    await tb.reset(sched[0])
+    await check_run(tb, sched[0], sched, len(sched))
+
+
+@cocotb.test()
 async def clamps_and_disable(dut):
     """m far beyond the hexagon and a period below the minimum are clamped and flagged; disabling mid-pulse turns
     every gate off on the next clock; the core restarts cleanly."""

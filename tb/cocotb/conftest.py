@@ -26,8 +26,10 @@ def pytest_generate_tests(metafunc):
 # ---- longest items first -------------------------------------------------------------------------------
 # pytest-xdist hands the items out in collection order, so a long item collected last keeps one worker
 # busy while the other idles. Items are sorted longest first (LPT): by the call durations of the last run
-# (build/sim_durations.json, written at the end of every run), else by a rough estimate.
+# (build/sim_durations.json, written at the end of every run), else by those of a full run committed with
+# the tests (tb/cocotb/sim_durations.json: a fresh clone, e.g. CI), else by a rough estimate.
 DURATIONS = simrun.BUILD / "sim_durations.json"
+DURATIONS_REF = Path(__file__).with_name("sim_durations.json")
 _seen: dict[str, float] = {}
 
 
@@ -43,10 +45,12 @@ def pytest_collection_modifyitems(session, config, items):
 
     if simrun.RTL_OVERRIDE:
         return                                   # scripts/mutate.py: its order (fastest, most specific first)
-    try:
-        known = json.loads(DURATIONS.read_text())
-    except (OSError, ValueError):
-        known = {}
+    known = {}
+    for f in (DURATIONS_REF, DURATIONS):          # the last run's own figures win
+        try:
+            known.update(json.loads(f.read_text()))
+        except (OSError, ValueError):
+            pass
     items.sort(key=lambda it: -known.get(it.nodeid, _estimate(it.nodeid)))
 
 

@@ -224,7 +224,8 @@ async def _per_clock(dut, n: int, what) -> list:
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
     core ignores V/f and the prescaler and runs the same steps in FREQ mode):
-    * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high;
+    * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
+      is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
     * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
     * adc_trig_o == (valley_o & adc_trig_i[0]) | (peak_o & adc_trig_i[1]) on every clock, each code;
     * a latched trip holds through valleys until fault_clear_i (then releases in the next clock); a
@@ -243,7 +244,11 @@ async def config_and_safety(dut):
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
     dut.rst_ni.value = 1
-    valleys = await _per_clock(dut, fixed.ARM_CLOCKS + 2, lambda: int(dut.valley_o.value))
+    got = await _per_clock(dut, fixed.ARM_CLOCKS + 2, lambda: (int(dut.valley_o.value), int(dut.period_o.value)))
+    valleys = [v for v, _ in got]
+    # the idle carrier loads the clamped period_i through a register whose reset value is MinPeriod
+    assert [p for _, p in got] == [tb.model.min_period] + [P] * (len(got) - 1), \
+        f"period_o after the reset release: {[p for _, p in got]}, expected MinPeriod, then period_i"
     assert valleys.index(1) == fixed.ARM_CLOCKS - 1, \
         f"valley_o after the reset release (en_i high) at clocks {valleys}: not the clock ARM_CLOCKS = " \
         f"{fixed.ARM_CLOCKS} after it"

@@ -227,7 +227,9 @@ async def config_and_safety(dut):
     * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
       is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
     * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
-    * adc_trig_o == (valley_o & adc_trig_i[0]) | (peak_o & adc_trig_i[1]) on every clock, each code;
+    * adc_trig_o == (valley_o & adc_trig_i[0]) | (peak_o & adc_trig_i[1]) on every clock, each code; carrier_o
+      0 at the valleys, P at the peaks, steps of one;
+    * period_i and dt_i changed between a valley's sample and the valley are taken only at the next valley;
     * a latched trip holds through valleys until fault_clear_i (then releases in the next clock); a
       cycle-by-cycle trip holds until the first valley after the fault and releases in the clock after it;
     * the pin polarity is taken while en_i is low; lock_i freezes polarity and dead time: locked_o, the
@@ -268,10 +270,13 @@ async def config_and_safety(dut):
     for code in (1, 2, 3):
         dut.adc_trig_i.value = code
         got = await _per_clock(dut, 2 * P + 4, lambda: (int(dut.adc_trig_o.value), int(dut.valley_o.value),
-                                                        int(dut.peak_o.value)))
-        bad = [k for k, (a, v, pk) in enumerate(got) if a != ((v & code) | (pk & code >> 1))]
+                                                        int(dut.peak_o.value), int(dut.carrier_o.value)))
+        bad = [k for k, (a, v, pk, _) in enumerate(got) if a != ((v & code) | (pk & code >> 1))]
         assert not bad, f"adc_trig_i = {code}: adc_trig_o wrong at clocks {bad[:5]} of {got[bad[0]]}"
-        assert sum(a for a, _, _ in got) == bin(code).count("1"), f"adc_trig_i = {code}: pulses in a period"
+        assert sum(a for a, _, _, _ in got) == bin(code).count("1"), f"adc_trig_i = {code}: pulses in a period"
+        # carrier_o: 0 at the valley, P at the peak, one step per clock in between
+        assert all(c == (0 if v else P) for _, v, pk, c in got if v or pk), "carrier_o at the valley / peak"
+        assert all(abs(a[3] - b[3]) == 1 for a, b in zip(got, got[1:])), "carrier_o does not step by one"
     dut.adc_trig_i.value = 0
     # ---- latched trip: holds through two valleys, released by fault_clear_i in the next clock
     await FallingEdge(dut.clk)
@@ -304,6 +309,26 @@ async def config_and_safety(dut):
         f"cycle-by-cycle trip: tripped_o {[t for t, _ in got[max(0, v - 2):v + 3]]} around the valley at clock {v}"
     tb.check_harness()
     assert int(dut.trip_violations_o.value) == 0, "in-RTL checker: a gate on while tripped"
+    # ---- period_i / dt_i changed after a valley's sample: taken at the next sample, i.e. the valley after
+    # (as if changed at that valley: the model's inputs(6)); the RTL gets them about 40 clocks before valley 6
+    u1, u2 = Inputs(freq=FW(500.0), m=MW(0.7), period=P, dt=7), Inputs(freq=FW(500.0), m=MW(0.7), period=P + 40, dt=11)
+    await tb.reset(u1)
+
+    async def early():
+        for _ in range(6):                                   # valleys 1 .. 5 (valley 0 is the start)
+            await RisingEdge(dut.valley_o)
+        await RisingEdge(dut.peak_o)                         # peak of period 5, then down to count ~40
+        await Timer((P - 40) * 10, "ns")
+        await FallingEdge(dut.clk)
+        assert 0 < int(dut.carrier_o.value) < fixed.SAMPLE_LEAD and not int(dut.carrier_up_o.value)
+        dut.period_i.value, dut.dt_i.value = u2.period, u2.dt
+
+    task = cocotb.start_soon(early())
+    rtl, exp = await tb.run(u1, lambda n: u1 if n < 6 else u2, 10)
+    assert task.done()
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp)
+    assert exp.period[6:8] == [P, P + 40], "the change is taken at valley 7"
     # ---- polarity (taken while en_i is low) and lock
     base = Inputs(freq=FW(500.0), m=MW(0.7), period=P, dt=9, mp=3)
     await tb.reset(base)

@@ -57,7 +57,8 @@ UNIT = {
     "svpwm_phase_acc.sv": ["tb/cocotb/svpwm_phase_acc"],
     "svpwm_calc.sv": ["tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-directed]",
                       "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-handshake]"],
-    "svpwm_mul.sv": ["tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-directed]",
+    "svpwm_mul.sv": ["tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_serial-serial]",
+                     "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-directed]",
                      "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-handshake]"],
     "svpwm_duty_lite.sv": ["tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-compact_cnt16-directed]",
                            "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-compact_cnt16-handshake]"],
@@ -68,7 +69,8 @@ UNIT = {
                     "tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-wbc]"],
     "svpwm_mmio.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil]"],
 }
-CORE_ITEMS = [f"{CORE_FAST}[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable", "reset_mid_run")]
+CORE_ITEMS = [f"{CORE_FAST}[icarus-{c}]" for c in ("config_and_safety", "full_only_inputs", "clamps_and_disable",
+                                                    "reset_mid_run")]
 COMPACT_ITEMS = [f"{CORE_FAST}_compact[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
 # (a node id given together with its file runs in the file's order: pytest merges them)
 SYSTEM = ["tb/cocotb/svpwm_modes", "tb/cocotb/svpwm_core/test_svpwm_core.py", "tb/cocotb/svpwm_sync",

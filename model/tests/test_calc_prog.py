@@ -122,6 +122,18 @@ def test_idle_word_and_fabs(compact, dsp):
     assert reads and all(k - 1 >= 1 for k in reads), reads   # operand of step k is taken in clock k - 1
 
 
+@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
+def test_mb_acc_unused(compact, dsp):
+    """No step loads MB with the ACC selection (mlb with mbs = MB_ACC, mop codes 5, 9, 10 of the table): the
+    program multiplies ACC only as MA. svpwm_calc's MbAcc branch of mb_d is therefore never loaded, which is
+    why scripts/mutate_equivalent.json lists mutants of that branch as equivalent; a generator change that
+    uses it makes this test fail (and those mutants must then be killed, not listed)."""
+    words = [cp.decode(x) for x in cp.program(compact, dsp).encode()]
+    used = [k for k, g in enumerate(words) if g["mlb"] and g["mbs"] == cp.MB_ACC]
+    assert not used, f"words {used} load MB from ACC"
+    assert any(g["mlb"] for g in words)                        # (the decode sees the loads at all)
+
+
 def test_misuse_is_refused():
     """The builder's packing refuses fields that share bits."""
     with pytest.raises(AssertionError):

@@ -12,9 +12,11 @@ from __future__ import annotations
 import logging
 
 import cocotb
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, with_timeout
 
 ALL = 0xF
+CLK_NS = 10                 # the harnesses' clock (tb_svpwm_bus*.sv: always #5)
+ACCESS_CLOCKS = 1000        # an AXI access not done in this many clocks hangs: fail now, not at a wall-clock limit
 
 
 class AxilBus:
@@ -26,6 +28,12 @@ class AxilBus:
         logging.getLogger(f"cocotb.{dut._name}.s_axil").setLevel(logging.WARNING)   # one line per access
         self.m = AxiLiteMaster(AxiLiteBus.from_prefix(dut, "s_axil"), dut.clk, dut.rst_n,
                                reset_active_level=False)
+
+    @staticmethod
+    async def _timed(aw, n: int = 1):
+        """aw (n accesses) within n * ACCESS_CLOCKS clocks, else SimTimeoutError: a slave that never answers
+        fails the test in microseconds of simulated time (the AXI master itself waits forever)."""
+        return await with_timeout(aw, n * ACCESS_CLOCKS * CLK_NS, "ns")
 
     @staticmethod
     def _lanes(strb: int) -> list[tuple[int, int]]:
@@ -45,10 +53,10 @@ class AxilBus:
     async def write(self, addr: int, value: int, strb: int = ALL) -> None:
         for off, n in self._lanes(strb):
             data = (value >> (8 * off)) & ((1 << (8 * n)) - 1)
-            await self.m.write(addr + off, data.to_bytes(n, "little"))
+            await self._timed(self.m.write(addr + off, data.to_bytes(n, "little")))
 
     async def read(self, addr: int) -> int:
-        r = await self.m.read(addr, 4)
+        r = await self._timed(self.m.read(addr, 4))
         return int.from_bytes(r.data, "little")
 
     async def write_many(self, ops: list[tuple[int, int]]) -> None:
@@ -59,7 +67,7 @@ class AxilBus:
             self.m.init_write(addr, value.to_bytes(4, "little"), event=ev)
             evs.append(ev)
         for ev in evs:
-            await ev.wait()
+            await self._timed(ev.wait(), len(evs))
 
     async def read_many(self, addrs: list[int]) -> list[int]:
         evs = []
@@ -69,7 +77,7 @@ class AxilBus:
             evs.append(ev)
         out = []
         for ev in evs:
-            await ev.wait()
+            await self._timed(ev.wait(), len(evs))
             out.append(int.from_bytes(ev.data.data, "little"))
         return out
 

@@ -16,6 +16,7 @@
 
 module tb_svpwm_calc #(
   parameter bit Compact  = 1'b0,
+  parameter bit Dsp      = svpwm_pkg::core_dsp(Compact),   // 0: the serial multiplier (no core builds it)
   parameter int CntWidth = 16,
   parameter int DtWidth  = 10
 ) (
@@ -53,7 +54,7 @@ module tb_svpwm_calc #(
   initial clk = 1'b0;
   always #5 clk = ~clk;
 
-  svpwm_calc #(.Compact(Compact), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
+  svpwm_calc #(.Compact(Compact), .Dsp(Dsp), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
     .clk_i      (clk),
     .rst_ni     (rst_ni),
     .start_i    (start_i),

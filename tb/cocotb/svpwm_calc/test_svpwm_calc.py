@@ -61,8 +61,13 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
   the ignored inputs; P in [8, 2^CntWidth - 1] (often <= 4 thr_max) with thr up to min(P/2, thr_max),
   thr_max / 0 often (snapping likely). CALC_NRAND overrides the count.
 
-Builds: Compact 0 / 1 x CntWidth 16 / 12 (DtWidth 10); pytest items: build x scenario group x simulator, each
-in its own build directory (they run in parallel under pytest -n).
+* `serial_vectors` (build full_serial only: Compact = 0 with Dsp = 0, the serial multiplier no core builds):
+  every CALC_SERIAL_STRIDE-th vector of every directed set + CALC_SERIAL_NRAND random vectors; LATENCY is then
+  the full program's length on the serial unit (calc_prog.calc_latency(False, False)).
+
+Builds: Compact 0 / 1 x CntWidth 16 / 12 (DtWidth 10), and full_serial (Dsp = 0, CntWidth 16: the groups
+`serial` only; its random part includes aborted computations); pytest items: build x scenario group x simulator, each in its own build directory
+(they run in parallel under pytest -n).
 """
 from __future__ import annotations
 
@@ -82,12 +87,14 @@ from cocotb.utils import get_sim_time
 
 from simrun import REPO, rtl_sources, run_sim
 from svpwm_model import fixed
-from svpwm_model.calc_prog import expect as calc_expect
+from svpwm_model.calc_prog import calc_latency, expect as calc_expect
 
 # the simulator process learns its variant from the pytest item (extra_env); the pytest process does not need it
 COMPACT = os.environ.get("SVPWM_CALC_COMPACT", "0") == "1"
-# clocks from start_i (cycle c) to done_o (cycle c + LATENCY): the one place the test states it
-LATENCY = {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
+SERIAL = os.environ.get("SVPWM_CALC_DSP", "") == "0"      # Compact = 0 on the serial multiplier (Dsp = 0)
+# clocks from start_i (cycle c) to done_o (cycle c + LATENCY): the one place the test states it (the serial
+# build: the length of the full program on the serial unit, calc_prog.calc_latency(False, False))
+LATENCY = calc_latency(False, False) if SERIAL else {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
 
 CLK_NS = 10                  # the harness's clock period
 P_MIN = 8                    # shortest period exercised (the RTL header states no minimum besides 2 thr)
@@ -487,6 +494,20 @@ async def random_vectors(dut):
 
 
 @cocotb.test()
+async def serial_vectors(dut):
+    """The full program on the serial multiplier (Dsp = 0, which no core builds): every SERIAL_STRIDE-th
+    vector of every directed set and seeded random vectors, == model; the multiplier's products reach
+    every result, so a wrong product, shift or iteration count fails here."""
+    tb = CalcTB(dut)
+    stride = int(os.environ.get("CALC_SERIAL_STRIDE", 23 if icarus() else 5))
+    rng = random.Random(0x5E71 + tb.W)
+    vecs = [v for k in DIRECTED for v in directed(k, tb.top, tb.thr_max)[::stride]]
+    vecs += [tb.rand_vec(rng) for _ in range(int(os.environ.get("CALC_SERIAL_NRAND", 60 if icarus() else 600)))]
+    await tb.reset()
+    await tb.run_vectors(vecs, rng, "serial")
+
+
+@cocotb.test()
 async def protocol(dut):
     """Every clock against the reference: single starts with gaps, start_i held high with inputs changing
     every clock (ignored while busy, back-to-back restarts), random start pulses, aborts."""
@@ -529,6 +550,7 @@ async def abort(dut):
 BUILDS = {
     "full_cnt16":    {"Compact": 0, "CntWidth": 16, "DtWidth": 10},
     "full_cnt12":    {"Compact": 0, "CntWidth": 12, "DtWidth": 10},
+    "full_serial":   {"Compact": 0, "Dsp": 0, "CntWidth": 16, "DtWidth": 10},
     "compact_cnt16": {"Compact": 1, "CntWidth": 16, "DtWidth": 10},
     "compact_cnt12": {"Compact": 1, "CntWidth": 12, "DtWidth": 10},
 }
@@ -538,10 +560,13 @@ SCENARIOS = {
     "sweep":     ["angle_sweep"],
     "random":    ["random_vectors"],
     "handshake": ["protocol", "abort"],
+    "serial":    ["serial_vectors"],
 }
 # builds interleaved: pytest-xdist hands the first items out round robin, so the two workers start on
 # different builds (the Verilator items of one build share its build directory, see below)
-ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Compact"] and s == "modes")]
+# (the serial build runs only its own short group: the same program, a slower multiplier)
+ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Compact"] and s == "modes")
+         and (b == "full_serial") == (s == "serial")]
 
 
 @pytest.mark.parametrize("build,scenario", ITEMS, ids=[f"{b}-{s}" for b, s in ITEMS])
@@ -550,4 +575,4 @@ def test_svpwm_calc(sim, build, scenario):
     run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
             test_module="test_svpwm_calc", test_dir=here, parameters=BUILDS[build],
             build_name=build if sim == "verilator" else f"{build}-{scenario}", testcase=SCENARIOS[scenario],
-            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"]})
+            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", "")})

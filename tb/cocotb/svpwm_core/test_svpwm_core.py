@@ -30,6 +30,7 @@ from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import Inputs
 from svpwm_tb import CoreTB
+from clocks import clock_cycles
 
 F_CLK = fixed.F_CLK_DEFAULT
 P_VERMA = 1536                        # 48 MHz / (2 * 1536) = 15.625 kHz (Verma; Minas: ~15.6 kHz)
@@ -219,6 +220,148 @@ async def full_only_inputs(dut):
         assert len(set(rtl.sector[1:])) > 1, "compact: the phase accumulator turns the vector (FREQ mode)"
     else:
         assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
+
+
+async def _per_clock(dut, n: int, what) -> list:
+    """what() read 1 ns after each of the next n rising clock edges (outputs settled)."""
+    out = []
+    for _ in range(n):
+        await RisingEdge(dut.clk)
+        await ReadOnly()
+        out.append(what())
+        await Timer(1, "ns")                             # leave the read-only phase before the next edge
+    return out
+
+
+@cocotb.test()
+async def config_and_safety(dut):
+    """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
+    core ignores V/f and the prescaler and runs the same steps in FREQ mode):
+    * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
+      is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
+    * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
+    * adc_trig_o == (valley_o & adc_trig_i[0]) | (peak_o & adc_trig_i[1]) on every clock, each code; carrier_o
+      0 at the valleys, P at the peaks, steps of one;
+    * period_i and dt_i changed between a valley's sample and the valley are taken only at the next valley;
+    * a latched trip holds through valleys until fault_clear_i (then releases in the next clock); a
+      cycle-by-cycle trip holds until the first valley after the fault and releases in the clock after it;
+    * the pin polarity is taken while en_i is low; lock_i freezes polarity and dead time: locked_o, the
+      pins, and a run == model with the locked dead time while dt_i / pol_i on the ports differ."""
+    tb = CoreTB(dut)
+    P = 300
+    vf = Inputs(freq=-FW(1000.0), m=MW(0.6), period=P, dt=7, mode=fixed.MODE_VF, vf_boost=MW(0.1),
+                vf_slope=0x0100, vf_mmax=0x9000, upd=fixed.UPD_BOTH, presc=2)
+    # ---- run from the reset release with en_i high: cycle 0 (valley_o) is the ARM_CLOCKS-th clock
+    tb.set_inputs(vf)
+    tb.set_safety()
+    dut.en_i.value = 1
+    dut.rst_ni.value = 0
+    await clock_cycles(dut.clk, 3)
+    await FallingEdge(dut.clk)
+    dut.rst_ni.value = 1
+    got = await _per_clock(dut, fixed.ARM_CLOCKS + 2, lambda: (int(dut.valley_o.value), int(dut.period_o.value)))
+    valleys = [v for v, _ in got]
+    # the idle carrier loads the clamped period_i through a register whose reset value is MinPeriod
+    assert [p for _, p in got] == [tb.model.min_period] + [P] * (len(got) - 1), \
+        f"period_o after the reset release: {[p for _, p in got]}, expected MinPeriod, then period_i"
+    assert valleys.index(1) == fixed.ARM_CLOCKS - 1, \
+        f"valley_o after the reset release (en_i high) at clocks {valleys}: not the clock ARM_CLOCKS = " \
+        f"{fixed.ARM_CLOCKS} after it"
+    # ---- V/f, reverse frequency, double update, prescaler 2: exact
+    await tb.reset(vf)
+    rtl, exp = await tb.run(vf, const(vf), 12)
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp, table_i=tb.compact)
+    fa = abs(vf.freq) >> (fixed.FREQ_WIDTH - 17)
+    if not tb.compact:
+        m_vf = fixed.vf_m(vf.freq, vf.vf_boost, vf.vf_slope, vf.vf_mmax)
+        assert m_vf == vf.vf_boost + fa < vf.vf_mmax and {u.m for u in exp.updates} == {m_vf}, \
+            "the V/f point is on the linear part of the law"
+        gaps = {b.load - a.load for a, b in zip(exp.updates, exp.updates[1:])}
+        assert gaps == {3 * P}, f"prescaler 2, both points: an update every third half period, gaps {gaps}"
+    # ---- ADC triggers (the core runs on with the last inputs)
+    for code in (1, 2, 3):
+        dut.adc_trig_i.value = code
+        got = await _per_clock(dut, 2 * P + 4, lambda: (int(dut.adc_trig_o.value), int(dut.valley_o.value),
+                                                        int(dut.peak_o.value), int(dut.carrier_o.value)))
+        bad = [k for k, (a, v, pk, _) in enumerate(got) if a != ((v & code) | (pk & code >> 1))]
+        assert not bad, f"adc_trig_i = {code}: adc_trig_o wrong at clocks {bad[:5]} of {got[bad[0]]}"
+        assert sum(a for a, _, _, _ in got) == bin(code).count("1"), f"adc_trig_i = {code}: pulses in a period"
+        # carrier_o: 0 at the valley, P at the peak, one step per clock in between
+        assert all(c == (0 if v else P) for _, v, pk, c in got if v or pk), "carrier_o at the valley / peak"
+        assert all(abs(a[3] - b[3]) == 1 for a, b in zip(got, got[1:])), "carrier_o does not step by one"
+    dut.adc_trig_i.value = 0
+    # ---- latched trip: holds through two valleys, released by fault_clear_i in the next clock
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 1
+    await ReadOnly()
+    assert int(dut.tripped_o.value) == 1 and int(dut.gate_hi_o.value) == 0 and int(dut.gate_lo_o.value) == 0
+    await FallingEdge(dut.clk)
+    await clock_cycles(dut.clk, 3)
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 0
+    got = await _per_clock(dut, 4 * P + 8, lambda: (int(dut.tripped_o.value), int(dut.valley_o.value)))
+    assert sum(v for _, v in got) >= 2 and all(t for t, _ in got), \
+        f"latched trip released without fault_clear_i (clock {[t for t, _ in got].index(0)} after the fault)"
+    await FallingEdge(dut.clk)
+    dut.fault_clear_i.value = 1
+    await FallingEdge(dut.clk)
+    dut.fault_clear_i.value = 0
+    assert int(dut.tripped_o.value) == 0, "fault_clear_i: the latched trip is not released in the next clock"
+    # ---- cycle-by-cycle trip: released in the clock after the first valley after the fault
+    dut.trip_cbc_i.value = 1
+    await clock_cycles(dut.clk, 2)
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 1
+    await clock_cycles(dut.clk, 3)
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 0
+    got = await _per_clock(dut, 2 * P + 8, lambda: (int(dut.tripped_o.value), int(dut.valley_o.value)))
+    v = [k for k, (_, vl) in enumerate(got) if vl and k >= 2][0]      # fault synchronised low from clock 2 on
+    assert all(t for t, _ in got[:v + 1]) and got[v + 1][0] == 0, \
+        f"cycle-by-cycle trip: tripped_o {[t for t, _ in got[max(0, v - 2):v + 3]]} around the valley at clock {v}"
+    tb.check_harness()
+    assert int(dut.trip_violations_o.value) == 0, "in-RTL checker: a gate on while tripped"
+    # ---- period_i / dt_i changed after a valley's sample: taken at the next sample, i.e. the valley after
+    # (as if changed at that valley: the model's inputs(6)); the RTL gets them about 40 clocks before valley 6
+    u1, u2 = Inputs(freq=FW(500.0), m=MW(0.7), period=P, dt=7), Inputs(freq=FW(500.0), m=MW(0.7), period=P + 40, dt=11)
+    await tb.reset(u1)
+
+    async def early():
+        for _ in range(6):                                   # valleys 1 .. 5 (valley 0 is the start)
+            await RisingEdge(dut.valley_o)
+        await RisingEdge(dut.peak_o)                         # peak of period 5, then down to count ~40
+        await Timer((P - 40) * 10, "ns")
+        await FallingEdge(dut.clk)
+        assert 0 < int(dut.carrier_o.value) < fixed.SAMPLE_LEAD and not int(dut.carrier_up_o.value)
+        dut.period_i.value, dut.dt_i.value = u2.period, u2.dt
+
+    task = cocotb.start_soon(early())
+    rtl, exp = await tb.run(u1, lambda n: u1 if n < 6 else u2, 10)
+    assert task.done()
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp)
+    assert exp.period[6:8] == [P, P + 40], "the change is taken at valley 7"
+    # ---- polarity (taken while en_i is low) and lock
+    base = Inputs(freq=FW(500.0), m=MW(0.7), period=P, dt=9, mp=3)
+    await tb.reset(base)
+    tb.set_safety(pol=3)
+    await clock_cycles(dut.clk, 2)
+    pins = (int(dut.gate_hi_pin.value), int(dut.gate_lo_pin.value))
+    assert pins == (7, 7), f"pol_i = 3 while idle: pins {pins}, expected all off = active-low high (7, 7)"
+    tb.set_safety(pol=3, lock=1)
+    await clock_cycles(dut.clk, 1)
+    tb.set_safety(pol=0, safe_lo=1, cbc=1)                     # locked: ignored until reset
+    plain = tb.set_inputs
+    tb.set_inputs = lambda u: (plain(u), setattr(dut.dt_i, "value", u.dt + 20), setattr(dut.mp_i, "value", 1))
+    tb.set_inputs(base)
+    await clock_cycles(dut.clk, 3)
+    pins = (int(dut.gate_hi_pin.value), int(dut.gate_lo_pin.value))
+    assert int(dut.locked_o.value) == 1 and pins == (7, 7), f"locked_o {int(dut.locked_o.value)}, pins {pins}"
+    rtl, exp = await tb.run(base, const(base), 6)
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp)
+    assert int(dut.lock_violations_o.value) == 0, "in-RTL checker: a locked configuration register changed"
 
 
 # ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two

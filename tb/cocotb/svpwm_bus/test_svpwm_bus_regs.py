@@ -15,7 +15,7 @@ import random
 from pathlib import Path
 
 import cocotb
-from cocotb.triggers import ReadOnly, RisingEdge
+from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 from clocks import clock_cycles
 
@@ -336,6 +336,26 @@ async def lock_fault_clear(dut):
     assert got["lock"] == 1 and got["en"] == 0 and tb.port(lock) == 1, f"lock cleared by a write of 0: {got}"
     await tb.reset()
     assert R.CTRL.decode(await tb.bus.read(R.CTRL.addr))["lock"] == 0 and tb.port(lock) == 0
+
+
+@cocotb.test(skip=os.environ.get("SVPWM_BUS") == "axil")
+async def reset_clears_ack(dut):
+    """Wishbone: the asynchronous reset clears ACK at once, not at the next clock edge (a reset in the
+    middle of an access leaves no acknowledge behind)."""
+    tb = TB(dut)
+    await tb.reset()
+    d = dut
+    await FallingEdge(d.clk)
+    d.wb_adr.value, d.wb_we.value, d.wb_datwr.value, d.wb_sel.value = R.ID.addr, 0, 0, 0xF
+    d.wb_cyc.value, d.wb_stb.value = 1, 1
+    await FallingEdge(d.clk)
+    assert int(d.wb_ack.value) == 1, "no ACK the clock after STB"
+    d.rst_n.value = 0                     # the master still holds CYC and STB
+    await Timer(1, "ns")                  # no clock edge in between
+    assert int(d.wb_ack.value) == 0, "ACK still high after the asynchronous reset"
+    d.wb_cyc.value, d.wb_stb.value = 0, 0
+    await tb.reset()
+    assert await tb.bus.read(R.ID.addr) == 0x53565057
 
 
 # --------------------------------------------------------------------------- pytest

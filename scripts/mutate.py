@@ -29,6 +29,7 @@ build/mutate/results.json. The score is killed / (generated - stillborn - equiva
 from __future__ import annotations
 
 import argparse
+from collections import Counter
 import hashlib
 import json
 import os
@@ -111,11 +112,15 @@ class Mutant:
     status: str = ""     # stillborn | killed | survived | equivalent
     by: str = ""         # the test that killed it / the equivalence reason
     seconds: float = 0.0
+    ctx: str = ""        # the next non-blank line, when the original line's text is not unique in its file
 
     @property
     def key(self) -> str:
-        """Stable across line shifts: file, operator, original and mutated line text."""
-        return hashlib.sha1(f"{self.file}|{self.op}|{self.orig.strip()}|{self.new.strip()}".encode()).hexdigest()[:12]
+        """Stable across line shifts: file, operator, original and mutated line text (and, for a line whose
+        text occurs more than once in the file, e.g. `if (!rst_ni) begin`, the line after it)."""
+        ctx = f"|{self.ctx.strip()}" if self.ctx else ""
+        return hashlib.sha1(f"{self.file}|{self.op}|{self.orig.strip()}|{self.new.strip()}{ctx}"
+                            .encode()).hexdigest()[:12]
 
 
 def hand_written() -> list[Path]:
@@ -245,8 +250,13 @@ def generate(count: int, seed: int, files: list[Path]) -> list[Mutant]:
     muts = []
     for f in files:
         pick = rng.sample(per[f], min(quota[f], len(per[f])))
+        lines = f.read_text().splitlines()
+        count_of = Counter(x.strip() for x in lines)
         for (i, op, orig, new) in sorted(pick):
-            muts.append(Mutant(id="", file=f.name, line=i + 1, op=op, orig=orig, new=new))
+            ctx = ""
+            if count_of[orig.strip()] > 1:
+                ctx = next((x for x in lines[i + 1:] if x.strip()), "")
+            muts.append(Mutant(id="", file=f.name, line=i + 1, op=op, orig=orig, new=new, ctx=ctx))
     for k, m in enumerate(muts):
         m.id = f"m{k:03d}"
     return muts

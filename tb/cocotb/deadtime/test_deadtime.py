@@ -249,12 +249,31 @@ async def short_pulses(dut):
                 assert hi == list(range(c0 + dt + 1, c0 + 2 * dt + 1)), f"dt={dt} w={w}: high pulse {hi}"
 
 
-BUILDS = {"dt10": {"DtWidth": 10}, "dt4": {"DtWidth": 4}}
+@cocotb.test()
+async def one_bit_width(dut):
+    """DtWidth = 1 (dead time and minimum pulse 0 or 1, the counter saturating at 1): random pulses, en_i
+    drops, braking, dt and mp changing while running. Runs on the 1-bit build only (the other tests
+    use dead times a 1-bit port cannot hold)."""
+    tb = DtTB(dut)
+    if tb.W != 1:
+        return
+    rng = random.Random(0x1B17)
+    sched = []
+    for _ in range(600 if not tb.icarus else 300):
+        sched.append((int(rng.random() > 0.05), int(rng.random() < 0.5) if rng.random() < 0.4 else
+                      (sched[-1][1] if sched else 0), rng.randint(0, 1), int(rng.random() < 0.03),
+                      rng.randint(0, 1)))
+    await tb.run(sched, "DtWidth 1")
+
+
+# the 1-bit build runs only the test made for it (the others need wider dead times)
+BUILDS = {"dt10": ({"DtWidth": 10}, None), "dt4": ({"DtWidth": 4}, None), "dt1": ({"DtWidth": 1}, "one_bit_width")}
 
 
 @pytest.mark.parametrize("build", list(BUILDS))
 def test_deadtime(sim, build):
+    params, only = BUILDS[build]
     run_sim(sim, toplevel="tb_deadtime",
             sources=[REPO / "rtl/deadtime.sv", Path(__file__).parent / "tb_deadtime.sv"],
             test_module="test_deadtime", test_dir=Path(__file__).parent,
-            parameters=BUILDS[build], build_name=build)
+            parameters=params, build_name=build, testcase=only)

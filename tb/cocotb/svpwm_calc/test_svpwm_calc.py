@@ -575,4 +575,5 @@ def test_svpwm_calc(sim, build, scenario):
     run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
             test_module="test_svpwm_calc", test_dir=here, parameters=BUILDS[build],
             build_name=build if sim == "verilator" else f"{build}-{scenario}", testcase=SCENARIOS[scenario],
-            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", "")})
+            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", "")},
+            vpi_top_only=True)

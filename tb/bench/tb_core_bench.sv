@@ -16,7 +16,7 @@ module tb_core_bench;
     .vf_boost_i(16'd0), .vf_slope_i(16'd0), .vf_mmax_i(16'd0), .dpwm_i(2'd0), .upd_i(2'd0), .presc_i(8'd0),
     .adc_trig_i(2'd0), .sync_en_i(1'b0), .sync_i(1'b0), .m_i(16'd29491), .period_i(16'd1536), .dt_i(10'd48),
     .mp_i(10'd0), .fault_i(1'b0), .fault_clear_i(1'b0), .trip_cbc_i(1'b0), .safe_lo_i(1'b0), .pol_i(2'd0),
-    .lock_i(1'b0), .clk,
+    .lock_i(1'b0), .trace_i(1'b0), .clk,
     .mon(), .gate_hi_o(), .gate_lo_o(), .pole_o(), .carrier_o(), .carrier_up_o(), .valley_o(), .peak_o(),
     .sector_o(), .cmp_o(), .period_o(), .running_o(), .update_o(), .adc_trig_o(), .sync_o(), .sat_o(),
     .cfg_err_o(), .period_clamp_o(), .freq_clamp_o(), .fault_o(), .tripped_o(), .locked_o(),

@@ -10,7 +10,7 @@ from __future__ import annotations
 import bisect
 import os
 from dataclasses import dataclass, field
-from typing import Callable, Sequence
+from typing import Callable, NamedTuple, Sequence
 
 import cocotb
 from cocotb.triggers import FallingEdge, RisingEdge, Timer
@@ -36,6 +36,16 @@ class RtlRun:
     running: list[int] = field(default_factory=list)
     sat: list[bool] = field(default_factory=list)
     updates: list[int] = field(default_factory=list)     # cycles update_o was high
+
+
+class Clock(NamedTuple):
+    """One clock of the harness' per-clock trace (CoreTB.per_clock)."""
+    valley: int
+    peak: int
+    period: int
+    adc: int
+    carrier: int
+    tripped: int
 
 
 def _diff(name: str, got: list, exp: list) -> str:
@@ -89,6 +99,7 @@ class CoreTB:
     async def reset(self, idle: Inputs = Inputs()) -> None:
         d = self.dut
         d.en_i.value = 0
+        d.trace_i.value = 0
         self.set_inputs(idle)
         self.set_safety()
         d.rst_ni.value = 0
@@ -110,6 +121,19 @@ class CoreTB:
         while True:
             await RisingEdge(self.dut.update_o)
             out.append(self._cycle())
+
+    async def per_clock(self, n: int) -> list[Clock]:
+        """The outputs 1 ns after each of the next n rising clock edges, from the harness' record (C lines,
+        written while trace_i is high): Python wakes once for the whole window, not at every clock."""
+        d = self.dut
+        t_start = get_sim_time("ns")
+        d.trace_i.value = 1
+        await Timer(n * CLK_NS + 2, "ns")
+        d.trace_i.value = 0
+        rows = [Clock(*(int(x, 16) for x in r[2:8])) for r in self._rec_lines()
+                if r[0] == "C" and int(r[1]) - 1 > t_start]
+        assert len(rows) >= n, f"per_clock: {len(rows)} clocks recorded, {n} expected (trace_i, +svpwm_rec?)"
+        return rows[:n]
 
     def _read_cmp(self) -> tuple[int, int, int]:
         w = self.cmp_width

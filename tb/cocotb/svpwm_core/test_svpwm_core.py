@@ -222,17 +222,6 @@ async def full_only_inputs(dut):
         assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
 
 
-async def _per_clock(dut, n: int, what) -> list:
-    """what() read 1 ns after each of the next n rising clock edges (outputs settled)."""
-    out = []
-    for _ in range(n):
-        await RisingEdge(dut.clk)
-        await ReadOnly()
-        out.append(what())
-        await Timer(1, "ns")                             # leave the read-only phase before the next edge
-    return out
-
-
 @cocotb.test()
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
@@ -259,7 +248,7 @@ async def config_and_safety(dut):
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
     dut.rst_ni.value = 1
-    got = await _per_clock(dut, fixed.ARM_CLOCKS + 2, lambda: (int(dut.valley_o.value), int(dut.period_o.value)))
+    got = [(k.valley, k.period) for k in await tb.per_clock(fixed.ARM_CLOCKS + 2)]
     valleys = [v for v, _ in got]
     # the idle carrier loads the clamped period_i through a register whose reset value is MinPeriod
     assert [p for _, p in got] == [tb.model.min_period] + [P] * (len(got) - 1), \
@@ -282,8 +271,7 @@ async def config_and_safety(dut):
     # ---- ADC triggers (the core runs on with the last inputs)
     for code in (1, 2, 3):
         dut.adc_trig_i.value = code
-        got = await _per_clock(dut, 2 * P + 4, lambda: (int(dut.adc_trig_o.value), int(dut.valley_o.value),
-                                                        int(dut.peak_o.value), int(dut.carrier_o.value)))
+        got = [(k.adc, k.valley, k.peak, k.carrier) for k in await tb.per_clock(2 * P + 4)]
         bad = [k for k, (a, v, pk, _) in enumerate(got) if a != ((v & code) | (pk & code >> 1))]
         assert not bad, f"adc_trig_i = {code}: adc_trig_o wrong at clocks {bad[:5]} of {got[bad[0]]}"
         assert sum(a for a, _, _, _ in got) == bin(code).count("1"), f"adc_trig_i = {code}: pulses in a period"
@@ -300,7 +288,7 @@ async def config_and_safety(dut):
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
     dut.fault_i.value = 0
-    got = await _per_clock(dut, 4 * P + 8, lambda: (int(dut.tripped_o.value), int(dut.valley_o.value)))
+    got = [(k.tripped, k.valley) for k in await tb.per_clock(4 * P + 8)]
     assert sum(v for _, v in got) >= 2 and all(t for t, _ in got), \
         f"latched trip released without fault_clear_i (clock {[t for t, _ in got].index(0)} after the fault)"
     await FallingEdge(dut.clk)
@@ -316,7 +304,7 @@ async def config_and_safety(dut):
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
     dut.fault_i.value = 0
-    got = await _per_clock(dut, 2 * P + 8, lambda: (int(dut.tripped_o.value), int(dut.valley_o.value)))
+    got = [(k.tripped, k.valley) for k in await tb.per_clock(2 * P + 8)]
     v = [k for k, (_, vl) in enumerate(got) if vl and k >= 2][0]      # fault synchronised low from clock 2 on
     assert all(t for t, _ in got[:v + 1]) and got[v + 1][0] == 0, \
         f"cycle-by-cycle trip: tripped_o {[t for t, _ in got[max(0, v - 2):v + 3]]} around the valley at clock {v}"

@@ -64,10 +64,15 @@ class CoreTB:
         self.model = CoreModel(compact=self.compact)
         self.cmp_width = len(dut.period_o)
         self.rec = None                     # the harness' record file (see run())
+        # what the ports get instead of the model's inputs (None: the same); e.g. another dead time on
+        # dt_i while lock_i holds the locked one (the model keeps the locked value)
+        self.port_inputs: Callable[[Inputs], Inputs] | None = None
         self.t0 = 0
 
     def set_inputs(self, u: Inputs) -> None:
         d = self.dut
+        if self.port_inputs is not None:
+            u = self.port_inputs(u)
         d.freq_i.value = u.freq
         d.m_i.value = u.m
         d.period_i.value = u.period

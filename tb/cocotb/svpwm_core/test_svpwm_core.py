@@ -19,6 +19,7 @@ valley updates, one serial calculator with a longer lead). Both run every test a
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import cocotb
@@ -340,8 +341,7 @@ async def config_and_safety(dut):
     tb.set_safety(pol=3, lock=1)
     await clock_cycles(dut.clk, 1)
     tb.set_safety(pol=0, safe_lo=1, cbc=1)                     # locked: ignored until reset
-    plain = tb.set_inputs
-    tb.set_inputs = lambda u: (plain(u), setattr(dut.dt_i, "value", u.dt + 20), setattr(dut.mp_i, "value", 1))
+    tb.port_inputs = lambda u: replace(u, dt=u.dt + 20, mp=1)
     tb.set_inputs(base)
     await clock_cycles(dut.clk, 3)
     pins = (int(dut.gate_hi_pin.value), int(dut.gate_lo_pin.value))

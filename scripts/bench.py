@@ -10,7 +10,9 @@
    simulated core clocks / wall time of the simulation inside the cocotb test (simulator + cocotb; not the
    build, not the model's expectation, not the analysis), and per CPU second of the simulator process
    (what the machine's load does not change). Then the raw harness without cocotb (tb/bench/tb_core_bench.sv:
-   the same harness and per-clock checker, constant inputs), Verilator --binary and Icarus, per CPU second.
+   the same harness, per-clock checker and event record, constant inputs, CoreTB's reset / enable
+   sequence), Verilator --binary (10 M clocks) and Icarus, per CPU second; its record is then compared
+   with the golden model like a regression test (every edge and compare value, Table I, the legs).
 2. Fidelity from the golden model (svpwm_model, no simulator): the line-voltage fundamental over one
    revolution at 50 Hz for m in {0.1, 0.5, 0.9, 1.0} against the command m * Udc, and the worst per-period
    |C - C_ideal| of those runs.
@@ -193,7 +195,9 @@ def exhaustive() -> list[dict]:
 
 
 def raw_harness(sim: str, clocks: int) -> dict:
-    """tb/bench/tb_core_bench.sv (tb_svpwm_core + constant inputs, no cocotb) built and run for `clocks`."""
+    """tb/bench/tb_core_bench.sv (tb_svpwm_core + constant inputs, no cocotb) built and run for `clocks`,
+    its event record then compared with the golden model started the same way (every edge, every
+    period's compare values, Table I, the legs), like the regression's core tests."""
     import resource
 
     import simrun
@@ -201,6 +205,7 @@ def raw_harness(sim: str, clocks: int) -> dict:
     simrun.ensure_verilator_env()
     out = BENCH_DIR / f"raw_{sim}"
     out.mkdir(parents=True, exist_ok=True)
+    rec = out / "run.rec"
     srcs = [str(s) for s in simrun.rtl_sources()] + [str(REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"),
                                                      str(REPO / "tb/bench/tb_core_bench.sv")]
     if sim == "verilator":
@@ -208,11 +213,11 @@ def raw_harness(sim: str, clocks: int) -> dict:
         build = ["verilator", "--binary", "--timing", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module",
                  "tb_core_bench", "-Mdir", str(out), *simrun.VERILATOR_CXX_ARGS, "-CFLAGS", "-std=c++20",
                  "-j", str(os.cpu_count() or 1), *srcs]
-        run = [str(exe), f"+clocks={clocks}"]
+        run = [str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}"]
     else:
         exe = out / "core.vvp"
         build = ["iverilog", "-g2012", "-o", str(exe), "-s", "tb_core_bench", *srcs]
-        run = ["vvp", "-n", str(exe), f"+clocks={clocks}"]
+        run = ["vvp", "-n", str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}"]
     b = subprocess.run(build, capture_output=True, text=True, cwd=out)
     if b.returncode:
         return dict(sim=sim, error=(b.stderr or b.stdout)[-2000:])
@@ -222,10 +227,41 @@ def raw_harness(sim: str, clocks: int) -> dict:
     wall = time.perf_counter() - t0
     c1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (c1.ru_utime - c0.ru_utime) + (c1.ru_stime - c0.ru_stime)
-    line = next((x for x in r.stdout.splitlines() if x.startswith("tb_core_bench:")), "")
-    ok = r.returncode == 0 and line.endswith("violations 0 0 0 0 0 0")
+    line = next((x for x in r.stdout.splitlines() if x.startswith("tb_core_bench:") and "clocks" in x), "")
+    safe = r.returncode == 0 and line.endswith("violations 0 0 0 0 0 0")
+    model = compare_raw_record(r.stdout, rec, clocks) if r.returncode == 0 else dict(ok=False, error="run failed")
     return dict(sim=sim, clocks=clocks, wall_s=wall, cpu_s=cpu, cycles_per_s=clocks / wall,
-                cycles_per_cpu_s=clocks / max(cpu, 1e-9), ok=ok, output=line, load_average_after=os.getloadavg())
+                cycles_per_cpu_s=clocks / max(cpu, 1e-9), ok=safe and model["ok"], safety_checker_clean=safe,
+                model=model, output=line, load_average_after=os.getloadavg())
+
+
+def compare_raw_record(stdout: str, rec: Path, clocks: int) -> dict:
+    """The raw run's record against the golden model: CoreModel idles the same ArmClocks + 2 clocks, then
+    runs the bench's constant inputs for every carrier period the run completed."""
+    sys.path.insert(0, str(REPO / "tb" / "cocotb"))
+    from svpwm_model import fixed
+    from svpwm_model.analysis import check_legs, check_table_i
+    from svpwm_model.core import CoreModel, Inputs
+    from svpwm_tb import CoreTB, dead_time_at, parse_record
+
+    try:
+        t_en = int(next(x for x in stdout.splitlines() if "enable at" in x).split()[-2])
+        u = Inputs(freq=fixed.freq_word(50.0), m=fixed.m_word(0.9), period=P_VERMA, dt=DT_1US)
+        assert (u.freq, u.m) == (107374, 29491), "tb_core_bench.sv's freq_i / m_i differ from the model's"
+        n = clocks // (2 * u.period) - 1           # periods that end inside the run
+        model = CoreModel()
+        model.idle(fixed.ARM_CLOCKS + 2)
+        exp = model.run(u, lambda k: u, n)
+        lines = [ln.split() for ln in rec.read_text().splitlines()]
+        rtl = parse_record(lines, t_en, 16, n, exp.end)
+        CoreTB.compare(rtl, exp)
+        seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
+        assert seq.ok, "Table I: " + "; ".join(seq.failures[:3])
+        legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
+        assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]
+    except (AssertionError, StopIteration, OSError, ValueError) as e:
+        return dict(ok=False, error=str(e)[:2000])
+    return dict(ok=True, periods=n, gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges))
 
 
 def main(argv=None) -> int:
@@ -320,13 +356,18 @@ def main(argv=None) -> int:
             print(f"  {rec['sim']:<10} {rec['periods']:>7} {r['cycles']:>10,} {r['sim_wall_s']:>7.2f} "
                   f"{r['cycles_per_s']:>11,.0f} {r.get('cycles_per_cpu_s', 0):>12,.0f} {r['gate_edges']:>6}  "
                   f"{'PASS' if r['ok'] else 'FAIL: ' + '; '.join(x.splitlines()[0] for x in r['failures'])}")
-    print("\nRaw harness (tb/bench/tb_core_bench.sv: tb_svpwm_core and its per-clock checker, no cocotb)")
+    print("\nRaw harness (tb/bench/tb_core_bench.sv: tb_svpwm_core, its per-clock checker and record, no cocotb; "
+          "the record == the golden model)")
     for r in report["raw_harness"]:
         if r.get("error"):
             print(f"  {r['sim']:<10} build FAILED: {r['error'].splitlines()[-1] if r['error'] else ''}")
         else:
+            m = r["model"]
+            res = (f"== model: {m['periods']} periods, {m['gate_edges']} gate edges" if m["ok"]
+                   else f"!= model: {m.get('error', '')[:200]}")
             print(f"  {r['sim']:<10} {r['clocks']:>10,} clocks {r['wall_s']:>7.2f} s wall {r['cycles_per_s']:>11,.0f} "
-                  f"cycles/s {r['cycles_per_cpu_s']:>11,.0f} cycles/CPU s  {'PASS' if r['ok'] else 'FAIL ' + r['output']}")
+                  f"cycles/s {r['cycles_per_cpu_s']:>11,.0f} cycles/CPU s  {'PASS' if r['ok'] else 'FAIL'} "
+                  f"(checker {'clean' if r['safety_checker_clean'] else r['output']}; {res})")
     print("\nModel: line-voltage fundamental over one revolution at 50 Hz (P = 1536, dt = 48)")
     print(f"  {'m':>4} {'m word':>6} {'measured':>9} {'rel err':>9} {'vs quant. m':>11} {'worst |C-Ci|':>12}")
     for f in report["model_fidelity_50hz"]:

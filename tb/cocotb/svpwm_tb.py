@@ -223,37 +223,7 @@ class CoreTB:
 
     def _recorded(self, n_periods: int, end: int) -> RtlRun:
         """RtlRun from the record: the first n_periods peaks and valleys after cycle 0, edges before end."""
-        w = self.cmp_width
-        cyc = lambda t: int(round(int(t) - self.t0)) // CLK_NS       # noqa: E731
-        split = lambda c: tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3))   # noqa: E731
-        rtl = RtlRun(valley=[0])
-        mon, upd, n_v, n_p = [], [], 0, 0
-        for rec in self._rec_lines():
-            if int(rec[1]) < self.t0:
-                continue
-            c = cyc(rec[1])
-            if rec[0] == "M":
-                mon.append((c, int(rec[2], 16)))
-            elif rec[0] == "U":
-                upd.append(c)
-            elif rec[0] == "P" and c >= 1 and n_p < n_periods:
-                n_p += 1
-                rtl.cmp_peak.append(split(int(rec[2], 16)) if int(rec[3], 16) else None)
-            elif rec[0] == "V" and c >= 1 and n_v < n_periods:
-                n_v += 1
-                rtl.valley.append(c)
-                if n_v < n_periods:
-                    cmp, sector, period, running, sat = (int(x, 16) for x in rec[2:7])
-                    rtl.cmp.append(split(cmp))
-                    rtl.sector.append(sector)
-                    rtl.period.append(period)
-                    rtl.running.append(running)
-                    rtl.sat.append(bool(sat))
-        rtl.updates = [c for c in upd if c < end]
-        words = [(c, x) for c, x in mon if c < end]
-        rtl.pole_edges = _squash([(c, x >> 6) for c, x in words])
-        rtl.gate_edges = _squash([(c, x & 0x3F) for c, x in words])
-        return rtl
+        return parse_record(self._rec_lines(), self.t0, self.cmp_width, n_periods, end)
 
     @staticmethod
     def compare(rtl: RtlRun, exp: Run) -> None:
@@ -291,6 +261,43 @@ class CoreTB:
         assert int(d.dead_time_violations.value) == 0, "in-RTL checker: dead time violated"
         assert int(d.short_pulse_count.value) == 0, "in-RTL checker: gate pulse shorter than max(dt, mp)"
         assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
+
+
+def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: int, end: int) -> RtlRun:
+    """RtlRun from the record lines of tb_svpwm_core.sv (split into fields), in the model's time base
+    (cycle 0 = the clock that starts at t0 ns, the rising edge that set en_i): the first n_periods peaks
+    and valleys after cycle 0, the edges before cycle `end`."""
+    w = cmp_width
+    cyc = lambda t: int(round(int(t) - t0)) // CLK_NS       # noqa: E731
+    split = lambda c: tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3))   # noqa: E731
+    rtl = RtlRun(valley=[0])
+    mon, upd, n_v, n_p = [], [], 0, 0
+    for rec in lines:
+        if int(rec[1]) < t0:
+            continue
+        c = cyc(rec[1])
+        if rec[0] == "M":
+            mon.append((c, int(rec[2], 16)))
+        elif rec[0] == "U":
+            upd.append(c)
+        elif rec[0] == "P" and c >= 1 and n_p < n_periods:
+            n_p += 1
+            rtl.cmp_peak.append(split(int(rec[2], 16)) if int(rec[3], 16) else None)
+        elif rec[0] == "V" and c >= 1 and n_v < n_periods:
+            n_v += 1
+            rtl.valley.append(c)
+            if n_v < n_periods:
+                cmp, sector, period, running, sat = (int(x, 16) for x in rec[2:7])
+                rtl.cmp.append(split(cmp))
+                rtl.sector.append(sector)
+                rtl.period.append(period)
+                rtl.running.append(running)
+                rtl.sat.append(bool(sat))
+    rtl.updates = [c for c in upd if c < end]
+    words = [(c, x) for c, x in mon if c < end]
+    rtl.pole_edges = _squash([(c, x >> 6) for c, x in words])
+    rtl.gate_edges = _squash([(c, x & 0x3F) for c, x in words])
+    return rtl
 
 
 def dead_time_at(valleys: list[int], dts: list[int]) -> Callable[[int], int]:

@@ -7,8 +7,10 @@
 //   AddrWidth - byte address width of the bus port (>= 7); addresses without a register read 0
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
-//   The core's widths are fixed by the register map: CntWidth 16, PhaseWidth 34, FreqWidth 24,
-//   DtWidth 10 (change rdl/svpwm.rdl and regenerate to change them).
+//   CntWidth  - the core's carrier / period / compare width, 12..16 (default 16, the PERIOD field's);
+//               a PERIOD above 2^CntWidth - 1 runs as 2^CntWidth - 1 (svpwm_mmio)
+//   The other widths are fixed by the register map: PhaseWidth 34, FreqWidth 24, DtWidth 10 (change
+//   rdl/svpwm.rdl and regenerate to change them).
 // Latency: write: AW/W accepted -> register written 1-2 clocks later (BVALID the clock after);
 //   read: AR accepted -> RVALID the next clock.
 // Restrictions: values written to several registers (e.g. V1 and V2) are sampled together only if
@@ -20,7 +22,8 @@ module svpwm_axil #(
   parameter int         MinPeriod = 48,                          // svpwm_core MinPeriod
   parameter int         FreqMax   = (1 << 23) - 1,               // svpwm_core FreqMax (FreqWidth 24)
   parameter logic [1:0] GatePol   = 2'b00,                       // svpwm_core GatePol, CTRL.pol reset
-  parameter int         ClkHz     = 0                            // clock in Hz, read in CLK_HZ (0 = not stated)
+  parameter int         ClkHz     = 0,                           // clock in Hz, read in CLK_HZ (0 = not stated)
+  parameter int         CntWidth  = 16                           // svpwm_core CntWidth, 12..16
 ) (
   input  logic                 clk_i,              // core and bus clock
   input  logic                 rst_ni,             // asynchronous reset, active low
@@ -76,7 +79,8 @@ module svpwm_axil #(
   );
 
   svpwm_mmio #(
-    .AddrWidth (AddrWidth), .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol), .ClkHz (ClkHz)
+    .AddrWidth (AddrWidth), .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol), .ClkHz (ClkHz),
+    .CntWidth (CntWidth)
   ) u_mmio (
     .clk_i (clk_i), .rst_ni (rst_ni),
     .req_i (req), .we_i (we), .addr_i (addr), .wdata_i (wdata), .be_i (be), .rdata_o (rdata),

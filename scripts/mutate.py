@@ -68,10 +68,11 @@ UNIT = {
     "svpwm_axil.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil]"],
     "svpwm_wb.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-wb]",
                     "tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-wbc]"],
-    "svpwm_mmio.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil]"],
+    "svpwm_mmio.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil]",
+                      "tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil_cnt12]"],
 }
 CORE_ITEMS = [f"{CORE_FAST}[icarus-{c}]" for c in ("config_and_safety", "full_only_inputs", "clamps_and_disable",
-                                                    "reset_mid_run")]
+                                                    "reset_mid_run")] + [f"{CORE_FAST}_freq16[icarus]"]
 COMPACT_ITEMS = [f"{CORE_FAST}_compact[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
 # (a node id given together with its file runs in the file's order: pytest merges them)
 SYSTEM = ["tb/cocotb/svpwm_modes", "tb/cocotb/svpwm_core/test_svpwm_core.py", "tb/cocotb/svpwm_sync",

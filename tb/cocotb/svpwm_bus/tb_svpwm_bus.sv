@@ -9,7 +9,8 @@ module tb_svpwm_bus #(
   parameter int Bus       = 0,
   parameter int AddrWidth = 8,
   parameter int MinPeriod = svpwm_pkg::min_period(1'b0),
-  parameter int ClkHz     = 0
+  parameter int ClkHz     = 0,
+  parameter int CntWidth  = 16
 ) (
   input  wire logic                 rst_n,
   input  wire logic [AddrWidth-1:0] s_axil_awaddr,
@@ -56,7 +57,7 @@ module tb_svpwm_bus #(
   always #5 clk = ~clk;
 
   if (Bus == 0) begin : gen_axil
-    svpwm_axil #(.AddrWidth(AddrWidth), .MinPeriod(MinPeriod), .ClkHz(ClkHz)) u_dut (
+    svpwm_axil #(.AddrWidth(AddrWidth), .MinPeriod(MinPeriod), .ClkHz(ClkHz), .CntWidth(CntWidth)) u_dut (
       .clk_i(clk), .rst_ni(rst_n),
       .axil_awaddr_i(s_axil_awaddr), .axil_awvalid_i(s_axil_awvalid), .axil_awready_o(s_axil_awready),
       .axil_wdata_i(s_axil_wdata), .axil_wstrb_i(s_axil_wstrb), .axil_wvalid_i(s_axil_wvalid),
@@ -71,7 +72,8 @@ module tb_svpwm_bus #(
     assign wb_ack   = 1'b0;
     assign wb_stall = 1'b0;
   end else begin : gen_wb
-    svpwm_wb #(.AddrWidth(AddrWidth), .Pipelined(Bus == 1), .MinPeriod(MinPeriod), .ClkHz(ClkHz)) u_dut (
+    svpwm_wb #(.AddrWidth(AddrWidth), .Pipelined(Bus == 1), .MinPeriod(MinPeriod), .ClkHz(ClkHz),
+               .CntWidth(CntWidth)) u_dut (
       .clk_i(clk), .rst_ni(rst_n),
       .wb_cyc_i(wb_cyc), .wb_stb_i(wb_stb), .wb_we_i(wb_we), .wb_adr_i(wb_adr), .wb_dat_i(wb_datwr),
       .wb_sel_i(wb_sel), .wb_dat_o(wb_datrd), .wb_ack_o(wb_ack), .wb_stall_o(wb_stall),

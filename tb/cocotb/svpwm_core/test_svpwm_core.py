@@ -352,9 +352,32 @@ async def config_and_safety(dut):
     assert int(dut.lock_violations_o.value) == 0, "in-RTL checker: a locked configuration register changed"
 
 
+@cocotb.test()
+async def narrow_freq_word(dut):
+    """FreqWidth = 16, PhaseWidth = 26 (the freq16 build only): the same core as the 24 / 34 one driven
+    with the frequency word shifted left by 8, so the model runs freq << 8 (exact: the accumulator holds
+    the 34-bit one's upper 26 bits). V/f with a steep slope (one fabs_i LSB = ~256 m LSBs, so the
+    FreqWidth < 17 branch of fabs_i, |f| shifted left, shows in the compare values) from +f through zero
+    to -f, then FREQ mode turning the vector through every sector; == model."""
+    assert len(dut.freq_i) == 16, "narrow_freq_word runs on the FreqWidth = 16 build only"
+    tb = CoreTB(dut)
+    tb.port_inputs = lambda u: replace(u, freq=u.freq >> 8)          # the port gets the 16-bit word
+    vf = dict(period=400, dt=5, mode=fixed.MODE_VF, vf_boost=0x0400, vf_slope=0xFFFF, vf_mmax=0xFFFF)
+    n_vf, n_fr = 24, 30
+    f16 = lambda k: round(60 * (1 - 2 * k / (n_vf - 1)))             # noqa: E731  +60 .. -60, through 0
+    sched = [Inputs(freq=f16(k) << 8, **vf) for k in range(n_vf)]
+    sched += [Inputs(freq=20000 << 8, m=MW(0.8), period=400, dt=5)] * n_fr
+    await tb.reset(sched[0])
+    rtl, exp = await check_run(tb, sched[0], sched, len(sched))
+    ms = {u.m for u in exp.updates[:n_vf]}
+    assert len(ms) > 10, f"V/f: m took only {len(ms)} values"
+    assert sorted(set(rtl.sector[n_vf:])) == [0, 1, 2, 3, 4, 5], "FREQ mode: not every sector"
+
+
 # ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two
 # builds (full, compact) are made once per simulator and shared by their items (simrun.run_sim).
-CASES = cocotb_tests(__file__)
+NARROW = "narrow_freq_word"                 # the freq16 build's own test
+CASES = [c for c in cocotb_tests(__file__) if c != NARROW]
 HARNESS = Path(__file__).parent / "tb_svpwm_core.sv"
 
 
@@ -372,3 +395,10 @@ def test_svpwm_core_compact(sim, case):
             test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
             parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
             testcase=case, record=True, vpi_top_only=True)
+
+
+def test_svpwm_core_freq16(sim):
+    # FreqWidth = 16 / PhaseWidth = 26: the frequency-word width branch no other build has (narrow_freq_word)
+    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
+            test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="freq16",
+            parameters={"FreqWidth": 16, "PhaseWidth": 26}, testcase=NARROW, record=True, vpi_top_only=True)

@@ -42,10 +42,15 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from demo import DT_1US, F_CLK, P_VERMA, REPO, TEST_DIR, SetupError, check_env, run_points  # noqa: E402
+from svpwm_model import fixed  # noqa: E402  (demo puts model/ and tb/cocotb/ on the path)
+from svpwm_model.core import Inputs  # noqa: E402
 
 BENCH_DIR = REPO / "build" / "bench"
 SIM_PERIODS = {"verilator": 3200, "icarus": 40}
 RAW_CLOCKS = {"verilator": 10_000_000, "icarus": 100_000}
+# the raw harness' constant inputs (Minas Fig. 10: 50 Hz, m = 0.9, P = 1536, 1 us dead time; the other
+# inputs are tb_core_bench.sv's zeros, Inputs' defaults)
+RAW_INPUTS = Inputs(freq=fixed.freq_word(50.0), m=fixed.m_word(0.9), period=P_VERMA, dt=DT_1US)
 FIDELITY_M = (0.1, 0.5, 0.9, 1.0)
 EXHAUSTIVE_M = (0.1, 0.5, 1.0)
 
@@ -101,7 +106,6 @@ def git_commit() -> str | None:
 
 
 def model_fidelity() -> list[dict]:
-    from svpwm_model import fixed
     from svpwm_model.analysis import duty_error, line_fundamental
     from svpwm_model.core import CoreModel, Inputs
 
@@ -129,7 +133,6 @@ def spectral_fidelity() -> list[dict]:
     largest line below f_sw/2 (dBc) vs the clock-rounded ideal bound, THD and WTHD vs the exact ideal."""
     import numpy as np
 
-    from svpwm_model import fixed
     from svpwm_model.core import CoreModel, Inputs
 
     sys.path.insert(0, str(TEST_DIR))
@@ -173,7 +176,6 @@ def spectral_fidelity() -> list[dict]:
 def exhaustive() -> list[dict]:
     import numpy as np
 
-    from svpwm_model import fixed
     from svpwm_model.ideal import ideal_compare
 
     n_ang = 1 << fixed.ANGLE_BITS
@@ -192,6 +194,12 @@ def exhaustive() -> list[dict]:
                         worst_over_interval=float(max(e_lo.max(), e_hi.max())),
                         rms_at_a16=float(np.sqrt(np.mean(e_lo ** 2)))))
     return out
+
+
+def raw_plusargs() -> list[str]:
+    """tb_core_bench.sv's inputs (its plusargs): RAW_INPUTS, the one place they are stated."""
+    u = RAW_INPUTS
+    return [f"+freq={u.freq}", f"+m={u.m}", f"+period={u.period}", f"+dt={u.dt}"]
 
 
 def raw_harness(sim: str, clocks: int) -> dict:
@@ -213,11 +221,11 @@ def raw_harness(sim: str, clocks: int) -> dict:
         build = ["verilator", "--binary", "--timing", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module",
                  "tb_core_bench", "-Mdir", str(out), *simrun.VERILATOR_CXX_ARGS, "-CFLAGS", "-std=c++20",
                  "-j", str(os.cpu_count() or 1), *srcs]
-        run = [str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}"]
+        run = [str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}", *raw_plusargs()]
     else:
         exe = out / "core.vvp"
         build = ["iverilog", "-g2012", "-o", str(exe), "-s", "tb_core_bench", *srcs]
-        run = ["vvp", "-n", str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}"]
+        run = ["vvp", "-n", str(exe), f"+clocks={clocks}", f"+svpwm_rec={rec}", *raw_plusargs()]
     b = subprocess.run(build, capture_output=True, text=True, cwd=out)
     if b.returncode:
         return dict(sim=sim, error=(b.stderr or b.stdout)[-2000:])
@@ -238,16 +246,12 @@ def raw_harness(sim: str, clocks: int) -> dict:
 def compare_raw_record(stdout: str, rec: Path, clocks: int) -> dict:
     """The raw run's record against the golden model: CoreModel idles the same ArmClocks + 2 clocks, then
     runs the bench's constant inputs for every carrier period the run completed."""
-    sys.path.insert(0, str(REPO / "tb" / "cocotb"))
-    from svpwm_model import fixed
-    from svpwm_model.analysis import check_legs, check_table_i
-    from svpwm_model.core import CoreModel, Inputs
-    from svpwm_tb import CoreTB, dead_time_at, parse_record
+    from svpwm_model.core import CoreModel
+    from svpwm_tb import CoreTB, check_edges, parse_record
 
     try:
         t_en = int(next(x for x in stdout.splitlines() if "enable at" in x).split()[-2])
-        u = Inputs(freq=fixed.freq_word(50.0), m=fixed.m_word(0.9), period=P_VERMA, dt=DT_1US)
-        assert (u.freq, u.m) == (107374, 29491), "tb_core_bench.sv's freq_i / m_i differ from the model's"
+        u = RAW_INPUTS
         n = clocks // (2 * u.period) - 1           # periods that end inside the run
         model = CoreModel()
         model.idle(fixed.ARM_CLOCKS + 2)
@@ -255,10 +259,7 @@ def compare_raw_record(stdout: str, rec: Path, clocks: int) -> dict:
         lines = [ln.split() for ln in rec.read_text().splitlines()]
         rtl = parse_record(lines, t_en, 16, n, exp.end)
         CoreTB.compare(rtl, exp)
-        seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
-        assert seq.ok, "Table I: " + "; ".join(seq.failures[:3])
-        legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
-        assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]
+        check_edges(rtl, exp)
     except (AssertionError, StopIteration, OSError, ValueError) as e:
         return dict(ok=False, error=str(e)[:2000])
     return dict(ok=True, periods=n, gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges))

@@ -242,18 +242,10 @@ class CoreTB:
         assert rtl.gate_edges == exp.gate_edges, _diff("gate edges", rtl.gate_edges, exp.gate_edges)
 
     def check_edges(self, rtl: RtlRun, exp: Run, stop=None, table_i: bool = True, dt_of=None):
-        """The checks beyond bit-exactness, from the RTL's own edges: the in-RTL pin checker, every period
-        against Table I (single-update SVPWM only: one symmetric seven-segment pattern per period) and
-        the legs for shoot-through, dead time and short pulses. Returns the Table I result (or None)."""
+        """The in-RTL pin checker, then check_edges() of the module on the RTL's edges. Returns the Table I
+        result (or None)."""
         self.check_harness()
-        seq = None
-        if table_i:
-            seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
-            assert seq.ok, "; ".join(seq.failures[:5])
-
-        legs = check_legs(rtl.gate_edges, dt_of or dead_time_at(rtl.valley, exp.dt), forced_off=[exp.end - 1] if stop is not None else [])
-        assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
-        return seq
+        return check_edges(rtl, exp, stop, table_i, dt_of)
 
     def check_harness(self) -> None:
         d = self.dut
@@ -261,6 +253,21 @@ class CoreTB:
         assert int(d.dead_time_violations.value) == 0, "in-RTL checker: dead time violated"
         assert int(d.short_pulse_count.value) == 0, "in-RTL checker: gate pulse shorter than max(dt, mp)"
         assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
+
+
+def check_edges(rtl: RtlRun, exp: Run, stop=None, table_i: bool = True, dt_of=None):
+    """The checks beyond bit-exactness, from the RTL's own edges: every period against Table I
+    (single-update SVPWM only: one symmetric seven-segment pattern per period) and the legs for
+    shoot-through, dead time and short pulses (a stop at the end: the last clock forces the gates off).
+    Returns the Table I result (or None)."""
+    seq = None
+    if table_i:
+        seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
+        assert seq.ok, "; ".join(seq.failures[:5])
+    legs = check_legs(rtl.gate_edges, dt_of or dead_time_at(rtl.valley, exp.dt),
+                      forced_off=[exp.end - 1] if stop is not None else [])
+    assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
+    return seq
 
 
 def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: int, end: int) -> RtlRun:

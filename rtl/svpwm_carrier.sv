@@ -31,10 +31,14 @@ module svpwm_carrier #(
   logic [CntWidth-1:0] count_d, count_q, period_d, period_q;
   logic                up_d, up_q;
   logic                peak_d, peak_q;     // registered peak detect (keeps the compare off later paths)
-  logic [CntWidth-1:0] pm1_d, pm1_q;       // period - 1, registered with the period (no subtractor)
-  logic                top;                // count == period - 1
+  logic [CntWidth-1:0] pm2_d, pm2_q;       // period - 2, registered with the period (no subtractor)
+  logic                topu_d, topu_q;     // counting up and count == period - 1 (the clock before the
+                                           // peak), registered: computed a clock ahead from count == P - 2
+  logic                p1_d, p1_q;         // period == 1 (the peak follows the valley at once)
   logic                ld_d, ld_q;         // count == 1 counting down (the last clock before a valley),
                                            // registered: the load strobe comes from a flip-flop
+  logic                vz_q;               // count == 0 counting up (a valley while running): the
+                                           // registered load strobe (after a load the count is 0, up)
 
   assign load_o = !run_i || ld_q;
 
@@ -42,19 +46,22 @@ module svpwm_carrier #(
     count_d  = count_q;
     up_d     = up_q;
     period_d = load_o ? period_i : period_q;
-    pm1_d    = load_o ? period_i - 1'b1 : pm1_q;
-    top      = count_q == pm1_q;
+    pm2_d    = load_o ? period_i - CntWidth'(2) : pm2_q;
+    p1_d     = load_o ? period_i == CntWidth'(1) : p1_q;
     if (!run_i) begin
       count_d = '0;
       up_d    = 1'b1;
     end else begin
       count_d = count_q + {{(CntWidth-1){!up_q}}, 1'b1};   // +1 up, -1 down: one adder
-      if (up_q && top) up_d = 1'b0;
-      if (ld_q)        up_d = 1'b1;       // count == 1, down
+      if (topu_q) up_d = 1'b0;
+      if (ld_q)   up_d = 1'b1;                // count == 1, down
     end
-    peak_d = run_i && up_q && top;          // next clock: count == period, down
+    // next clock counting up at count == P - 1: after a load (count 0) when P == 1, else one step
+    // after count == P - 2 counting up (never right after the top itself: the count turns down)
+    topu_d = load_o ? (period_i == CntWidth'(1)) : (up_q && !topu_q && count_q == pm2_q);
+    peak_d = run_i && topu_q;               // next clock: count == period, down
     // next clock: count == 1, down (from 2 down, or from the peak of a one-clock half period)
-    ld_d   = run_i && (up_q ? (top && pm1_q == '0) : (count_q == CntWidth'(2)));
+    ld_d   = run_i && (topu_q ? p1_q : (!up_q && count_q == CntWidth'(2)));
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -62,23 +69,29 @@ module svpwm_carrier #(
       count_q  <= '0;
       up_q     <= 1'b1;
       period_q <= CntWidth'(1);
-      pm1_q    <= '0;
+      pm2_q    <= '1;                   // period 1: -1
+      topu_q   <= 1'b1;                 // count 0 == period 1 - 1, up
+      p1_q     <= 1'b1;
       peak_q   <= 1'b0;
       ld_q     <= 1'b0;
+      vz_q     <= 1'b1;
     end else begin
       count_q  <= count_d;
       up_q     <= up_d;
       period_q <= period_d;
-      pm1_q    <= pm1_d;
+      pm2_q    <= pm2_d;
+      topu_q   <= topu_d;
+      p1_q     <= p1_d;
       peak_q   <= peak_d;
       ld_q     <= ld_d;
+      vz_q     <= load_o;
     end
   end
 
   assign count_o  = count_q;
   assign up_o     = up_q;
   assign period_o = period_q;
-  assign valley_o = run_i && up_q && count_q == '0;
+  assign valley_o = run_i && vz_q;       // == run_i && up_q && count_q == 0
   assign peak_o     = run_i && peak_q;    // == run_i && !up_q && count_q == period_q
   assign pre_peak_o = peak_d;
 
@@ -94,7 +107,10 @@ module svpwm_carrier #(
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && period_q != $past(period_q))
     assert (count_q == '0 && up_q);
   always_comb if (rst_ni) assert (peak_o == (run_i && !up_q && count_q == period_q));
-  always_comb if (rst_ni) assert (pm1_q == period_q - 1'b1);
+  always_comb if (rst_ni) assert (pm2_q == period_q - CntWidth'(2));
+  always_comb if (rst_ni) assert (p1_q == (period_q == CntWidth'(1)));
+  always_comb if (rst_ni) assert (topu_q == (up_q && count_q == period_q - 1'b1));
+  always_comb if (rst_ni) assert (vz_q == (up_q && count_q == '0));
   always_comb if (rst_ni) assert (ld_q == (!up_q && count_q == CntWidth'(1)));
   always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
 `endif

@@ -225,19 +225,27 @@ module svpwm_core #(
   // an update (valid in every clock but the one after a load, i.e. at every sample point): the sample
   // strobes then reach the ~150 register enables they drive straight from flip-flops
   logic [CntWidth-1:0] period_clamped_q;
-  logic                period_under_q, chg_q;
+  logic                period_under_q, ne_pin_q, ne_low_q, dtmp_chg_q, chg;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       period_clamped_q <= CntWidth'(MinPeriod);
       period_under_q   <= 1'b0;
-      chg_q            <= 1'b0;
+      ne_pin_q         <= 1'b0;
+      ne_low_q         <= 1'b0;
+      dtmp_chg_q       <= 1'b0;
     end else begin
       period_clamped_q <= period_clamped;
       period_under_q   <= period_under;
-      chg_q            <= period_clamped != period_act || dt_cfg_q != dt_q || mp_cfg_q != mp_q;
+      ne_pin_q         <= period_i != period_act;
+      ne_low_q         <= period_low_q != period_act;
+      dtmp_chg_q       <= dt_cfg_q != dt_q || mp_cfg_q != mp_q;
     end
   end
+
+  // == (period_clamped_q != period_act || dt_use_q != dt_q || mp_use_q != mp_q): the three compares are
+  // registered side by side (the period one for both sides of the clamp), the clamp's choice after them
+  assign chg = (period_under_q ? ne_low_q : ne_pin_q) || dtmp_chg_q;
 
   logic signed [FreqWidth-1:0] freq_d, freq_q;
   logic                period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
@@ -273,30 +281,40 @@ module svpwm_core #(
   assign pps   = run && pps_q;
 
   // ---- update control: which opportunities update (upd, prescaler), forced updates --------------
-  localparam logic [1:0] UpdValley = 2'd0, UpdPeak = 2'd1;   // 2'd2: both
+  localparam logic [1:0] UpdPeak = 2'd1, UpdBoth = 2'd2;   // 2'd0: valley
 
-  logic [1:0] upd_d, upd_q;
+  logic       updv_d, updv_q, updp_d, updp_q;   // the update mode as "valley / peak opportunities used"
+  logic       cz_d, cz_q;                       // cnt_d == 0, registered (the prescaler lets this one update)
   logic       upd_err_d, upd_err_q;
   logic [7:0] presc_d, presc_q, cnt_d, cnt_q;
   logic       opp_v, opp_p, forced, event_now;
 
-  assign opp_v     = vps && upd_q != UpdPeak;
-  assign opp_p     = pps && upd_q != UpdValley;
-  assign forced    = vps && chg_q;      // (period_clamped_q != period_act || dt_use_q != dt_q || mp_use_q != mp_q)
-  assign event_now = ((opp_v || opp_p) && cnt_q == '0) || forced;
+  assign opp_v     = vps && updv_q;
+  assign opp_p     = pps && updp_q;
+  assign forced    = vps && chg;
+  assign event_now = ((opp_v || opp_p) && cz_q) || forced;
 
   always_comb begin
-    upd_d     = upd_q;
+    updv_d    = updv_q;
+    updp_d    = updp_q;
     upd_err_d = upd_err_q;
     presc_d   = presc_q;
     cnt_d     = cnt_q;
-    if (opp_v || opp_p) cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
+    cz_d      = cz_q;
+    if (opp_v || opp_p) begin
+      cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
+      cz_d  = cnt_q >= presc_q;
+    end
     if (!run || vps) begin                 // update mode and prescaler: before each valley (or idle)
-      upd_d     = (upd_in == 2'd3) ? UpdValley : upd_in;
+      updv_d    = upd_in != UpdPeak;       // an invalid code (3) is a valley update (+ upd_err)
+      updp_d    = upd_in == UpdPeak || upd_in == UpdBoth;
       upd_err_d = upd_in == 2'd3;
       presc_d   = presc_in;
     end
-    if (!run) cnt_d = '0;
+    if (!run) begin
+      cnt_d = '0;
+      cz_d  = 1'b1;
+    end
   end
 
   // ---- reference registers: taken at an update's sample ---------------------------------------
@@ -476,7 +494,9 @@ module svpwm_core #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      upd_q          <= UpdValley;
+      updv_q         <= 1'b1;
+      updp_q         <= 1'b0;
+      cz_q           <= 1'b1;
       upd_err_q      <= 1'b0;
       presc_q        <= '0;
       cnt_q          <= '0;
@@ -503,7 +523,9 @@ module svpwm_core #(
       err_q          <= 1'b0;
       update_q       <= 1'b0;
     end else begin
-      upd_q          <= upd_d;
+      updv_q         <= updv_d;
+      updp_q         <= updp_d;
+      cz_q           <= cz_d;
       upd_err_q      <= upd_err_d;
       presc_q        <= presc_d;
       cnt_q          <= cnt_d;
@@ -644,7 +666,8 @@ module svpwm_core #(
   end
   // the compact calculator reads period_next_q / dt_next_q + mp_next_q at its start: only valley updates
   // (the update mode stays "valley", so every computation starts from a valley sample)
-  always_comb if (Compact && rst_ni) assert (upd_q == UpdValley);
+  always_comb if (Compact && rst_ni) assert (updv_q && !updp_q);
+  always_comb if (rst_ni) assert (cz_q == (cnt_q == '0));
   always_comb if (Compact && rst_ni && start_q) assert (ev_valley_q);
   // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))

@@ -31,11 +31,13 @@
 // mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an update at
 // that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
-// time to a turned-on gate. freq_i steps the angle from the sample on. After en_i rises the gates stay
-// off until the first update; en_i low turns all gates off on the next clock and aborts a computation.
-// The first carrier period after en_i rises has period_i as it was two clocks before (idle load registered).
+// time to a turned-on gate. freq_i steps the angle from the sample on. The modulator runs one clock
+// after en_i (a register: its first valley is the clock after en_i rises, with period_i as it was in the
+// clock before en_i rose); after en_i rises the gates stay off until the first update; en_i low turns
+// all gates and poles off on the next clock (running_o at once) and aborts a computation.
 // Reset: all gates off (at the pins, polarity GatePol). sync_en_i: the carrier starts only with a
-// sync_i pulse (another core's sync_o, same clock), so several cores run phase-aligned.
+// sync_i pulse (another core's sync_o: the clock before its valley, same clock domain), so several cores
+// run phase-aligned.
 // Safety (README "Safety"): fault_i forces the high sides (and, unless braking, the low sides) off
 // combinationally, latched or cycle-by-cycle; a shoot-through interlock is the last stage; the dead
 // time, minimum pulse, polarity and safe state are locked by lock_i until reset; out-of-range inputs
@@ -72,7 +74,7 @@ module svpwm_core #(
   input  logic [DtWidth-1:0]          mp_i,            // minimum gate pulse in clocks (locked)
   input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
   input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
-  input  logic                        sync_i,          // another core's sync_o (same clock)
+  input  logic                        sync_i,          // another core's sync_o (same clock domain)
   input  logic                        fault_i,         // trip input, asynchronous, active high
   input  logic                        fault_clear_i,   // clears a latched trip once fault_i is low
   input  logic                        trip_cbc_i,      // trip mode: 0 latched, 1 cycle-by-cycle (locked)
@@ -89,7 +91,7 @@ module svpwm_core #(
   output logic                        peak_o,          // pulse: carrier peak
   output logic                        update_o,        // pulse: new compare values active from this clock
   output logic                        adc_trig_o,      // pulse: ADC trigger (valley and/or peak)
-  output logic                        sync_o,          // pulse: valley, for other cores' sync_i
+  output logic                        sync_o,          // pulse: the clock before a valley (sync_i)
   output logic [2:0]                  sector_o,        // sector (0..5 = seeds' 1..6) of the active values
   output logic [3*CntWidth-1:0]       cmp_o,           // {C_c, C_b, C_a} active now
   output logic [CntWidth-1:0]         period_o,        // active half period
@@ -123,20 +125,22 @@ module svpwm_core #(
     initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
   end
 
-  // ---- run: en_i, but not in the first ArmClocks (4) clocks after reset, so that the configuration
-  // registers, the lowest legal period, the clamped period and then the idle loads (period clamped for
-  // the dead time, frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i
-  // pulse ------------------------------------------------------------------------------------------
-  logic [svpwm_pkg::ArmClocks-1:0] armed_q;
-  logic       run, started_q;
+  // ---- run: a register, en_i of the clock before (the modulator starts StartDelay = 1 clock after en_i
+  // rises; en_i low still turns the gates off on the next clock: the legs and poles read en_i too), but
+  // not in the first ArmClocks (4) clocks after reset, so that the configuration registers, the lowest
+  // legal period, the clamped period and then the idle loads (period clamped for the dead time,
+  // frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse (another
+  // core's sync_o: the clock before its valley). Every enable of the core reads run from a flip-flop.
+  logic [svpwm_pkg::ArmClocks-2:0] armed_q;
+  logic       run_d, run;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      armed_q   <= '0;
-      started_q <= 1'b0;
+      armed_q <= '0;
+      run     <= 1'b0;
     end else begin
-      armed_q   <= {armed_q[svpwm_pkg::ArmClocks-2:0], 1'b1};
-      started_q <= run;
+      armed_q <= {armed_q[svpwm_pkg::ArmClocks-3:0], 1'b1};
+      run     <= run_d;
     end
   end
 
@@ -149,7 +153,7 @@ module svpwm_core #(
   assign upd_in   = Compact ? 2'd0 : upd_i;
   assign presc_in = Compact ? 8'd0 : presc_i;
 
-  assign run = en_i && armed_q[svpwm_pkg::ArmClocks-1] && (started_q || !sync_en || sync_i);
+  assign run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (run || !sync_en || sync_i);
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -561,7 +565,7 @@ module svpwm_core #(
   svpwm_compare #(.CntWidth(CntWidth)) u_compare (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .run_i   (run && valid_q),
+    .run_i   (en_i && run && valid_q),   // en_i: the poles stop with the gates
     .count_i (count),
     .up_i    (up),
     .cmp_i   (cmp_q),
@@ -579,7 +583,7 @@ module svpwm_core #(
     deadtime #(.DtWidth(DtWidth)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .en_i    (trip_sync ? safe_lo_q : (run && pole_valid)),
+      .en_i    (trip_sync ? safe_lo_q : (en_i && run && pole_valid)),
       .brake_i (brake),
       .pole_i  (pole[ph]),
       .dt_i    (dt_q),              // deadtime reads them a clock ahead: a new dead time and minimum
@@ -619,11 +623,11 @@ module svpwm_core #(
   assign peak_o         = peak;
   assign update_o       = update_q;
   assign adc_trig_o     = (valley && adc_trig_i[0]) || (peak && adc_trig_i[1]);
-  assign sync_o         = valley;
+  assign sync_o         = run_d && load;     // the next clock is a valley (a synced core starts with it)
   assign sector_o       = sector_q;
   assign cmp_o          = cmp_q;
   assign period_o       = period_act;
-  assign running_o      = run && valid_q;
+  assign running_o      = en_i && run && valid_q;
   assign sat_o          = sat_q;
   assign cfg_err_o      = err_q || upd_err_q;
   assign period_clamp_o = period_clamp_q;

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """Clock-exact model of rtl/svpwm_core.sv: per-update compare values and every pole and gate edge.
 
-Time base: cycle 0 is the first clock with en_i = 1 (the valley of carrier period 0). A value "at
-cycle c" is a register's value during clock c; an edge "at cycle c" means the new value holds from c.
+Time base: cycle 0 is the first clock with en_i = 1; the core's run register follows en_i a clock later,
+so the valley of carrier period 0 is cycle fixed.START_DELAY (1). A value "at cycle c" is a register's value
+during clock c; an edge "at cycle c" means the new value holds from c.
 
 Timeline (see README "Timing"):
 * period n starts at valley t_n with half period P_n: t_{n+1} = t_n + 2 P_n; its peak is t_n + P_n.
@@ -153,8 +154,8 @@ class CoreModel:
         dt_cur, mp_cur = idle.dt, idle.mp
         f_cur, _ = fixed.clamp_freq(idle.freq)
         upd, presc, cnt = _upd_code(idle.upd), idle.presc, 0
-        t = 0
-        theta, th_t = self.theta, 0            # the angle at cycle th_t
+        t = fixed.START_DELAY                  # valley of period 0: the first clock the core runs
+        theta, th_t = self.theta, t            # the angle at cycle th_t (it steps from t on)
         stop_cycle = None
         active: Update | None = None           # values in force
         halves: list[tuple[int, int, Update | None]] = []   # (start cycle, half period, values) per half
@@ -207,10 +208,11 @@ class CoreModel:
                 ev = cnt == 0
                 cnt = 0 if cnt >= presc else cnt + 1
                 s = pk - lead
-                if ev and (stop_cycle is None or s - 1 < stop_cycle):
+                # the core runs (samples, takes) up to the stop clock itself: its run register
+                if ev and (stop_cycle is None or s - 1 < stop_cycle + fixed.START_DELAY):
                     u_pk = pget(n) if not last else get(n - 1)   # the ports hold the last inputs
                     up = compute(u_pk, s, p_cur, dt_cur + mp_cur, True)
-                    if stop_cycle is None or up.load - 1 < stop_cycle:   # taken while still running
+                    if stop_cycle is None or up.load - 1 < stop_cycle + fixed.START_DELAY:   # taken while running
                         r.updates.append(up)
                         active = up
             if not last:
@@ -242,7 +244,7 @@ class CoreModel:
                 raise ValueError("stop must lie between the last valley and the following peak")
             r.valley.append(t)
             end = stop_cycle + 2          # the gates are off from stop_cycle + 1
-            advance(stop_cycle)
+            advance(stop_cycle + fixed.START_DELAY)   # the accumulator steps in the stop clock too
         self.theta = theta
         r.end = end
         # ---- poles: per half period, merge touching intervals, clip at the stop ----

@@ -29,6 +29,7 @@ CNT_WIDTH = 16            # carrier / period / compare width
 DT_WIDTH = 10             # dead-time counter width (clocks)
 MIN_PERIOD_BASE = 48      # rtl/svpwm_pkg.sv MinPeriodBase: the floor of the MinPeriod defaults
 ARM_CLOCKS = 4            # rtl/svpwm_pkg.sv ArmClocks: the core runs this many clocks after reset at the earliest
+START_DELAY = 1           # the modulator starts this many clocks after en_i rises (svpwm_core's run register)
 ROM_BITS = 8              # sine ROM: 2**ROM_BITS intervals over 0..60 deg (257 points)
 INTERP_BITS = 8           # linear-interpolation fraction bits
 ANGLE_BITS = ROM_BITS + INTERP_BITS   # angle bits the duty calculator uses (top of the accumulator)

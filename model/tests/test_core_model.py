@@ -59,7 +59,7 @@ SCHED = [Inputs(FW(f), MW(m), p + O, dt) for f, m, p, dt in
 def test_valley_spacing_and_first_period():
     idle = Inputs(FW(120.0), MW(0.7), 50 + O, 3)
     r = CoreModel().run(idle, SCHED, len(SCHED))
-    assert r.valley[0] == 0 and r.period[0] == 50 + O
+    assert r.valley[0] == fixed.START_DELAY and r.period[0] == 50 + O
     for n in range(len(SCHED)):
         assert r.valley[n + 1] - r.valley[n] == 2 * r.period[n]
         if n:
@@ -103,7 +103,7 @@ def test_accumulator_equals_angle_step():
         u = Inputs(f, MW(0.5), p, 0)
         mdl = CoreModel(sector=4, angle=(1 << fixed.PHASE_WIDTH) - 5)
         r = mdl.run(u, [u] * n, n)
-        assert r.valley[-1] == 2 * p * n
+        assert r.valley[-1] == fixed.START_DELAY + 2 * p * n
         f_used = fixed.clamp_freq(f)[0]      # -2^23 is clamped to -(2^23 - 1): a symmetric range
         assert mdl.theta == advance(full_angle(4, (1 << fixed.PHASE_WIDTH) - 5), f_used, 2 * p * n)
     # changing frequency and period: idle.freq until the first sample, SAMPLE_LEAD clocks before valley 1;
@@ -111,7 +111,7 @@ def test_accumulator_equals_angle_step():
     mdl = CoreModel()
     idle = Inputs(FW(10.0), 0, 48 + O, 0)
     r = mdl.run(idle, SCHED, len(SCHED))
-    theta, t_prev, f = 0, 0, idle.freq
+    theta, t_prev, f = 0, fixed.START_DELAY, idle.freq
     for n in range(len(SCHED)):
         s = r.valley[n + 1] - fixed.SAMPLE_LEAD
         theta = advance(theta, f, s - t_prev)

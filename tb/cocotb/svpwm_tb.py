@@ -182,7 +182,7 @@ class CoreTB:
         await clock_cycles(d.clk, 2)                # period_i on the port 2 clocks before en_i (README, Timing)
         d.en_i.value = 1
         self.t0 = get_sim_time("ns")
-        await FallingEdge(d.clk)                    # valley_o of cycle 0 is already up
+        await FallingEdge(d.clk)                    # (the first valley_o is cycle START_DELAY)
         for c, u in changes:
             await self._to_cycle(c)
             await FallingEdge(d.clk)
@@ -277,7 +277,7 @@ def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: i
     w = cmp_width
     cyc = lambda t: int(round(int(t) - t0)) // CLK_NS       # noqa: E731
     split = lambda c: tuple((c >> (w * ph)) & ((1 << w) - 1) for ph in range(3))   # noqa: E731
-    rtl = RtlRun(valley=[0])
+    rtl = RtlRun(valley=[fixed.START_DELAY])       # the first valley: the core's first running clock
     mon, upd, n_v, n_p = [], [], 0, 0
     for rec in lines:
         if int(rec[1]) < t0:
@@ -290,7 +290,7 @@ def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: i
         elif rec[0] == "P" and c >= 1 and n_p < n_periods:
             n_p += 1
             rtl.cmp_peak.append(split(int(rec[2], 16)) if int(rec[3], 16) else None)
-        elif rec[0] == "V" and c >= 1 and n_v < n_periods:
+        elif rec[0] == "V" and c > fixed.START_DELAY and n_v < n_periods:
             n_v += 1
             rtl.valley.append(c)
             if n_v < n_periods:

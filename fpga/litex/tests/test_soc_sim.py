@@ -353,7 +353,7 @@ def test_soc_vf_ramp(soc_factory):
     assert [c for c, a, *_ in r.writes if c > t0 and a not in (R.FREQ.addr,)] == [], "writes other than FREQ"
 
     def at_sample(k):
-        return inputs_of(regs_at(r.writes, t0 + 2 * p * (k + 1) - fixed.SAMPLE_LEAD - 1))
+        return inputs_of(regs_at(r.writes, t0 + fixed.START_DELAY + 2 * p * (k + 1) - fixed.SAMPLE_LEAD - 1))
 
     model = core.CoreModel().run(inp0, at_sample, n)
     got = [(c - t0, x) for c, x in r.gates if t0 <= c < t0 + model.end]

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """Multi-axis sync and ADC triggers (issue #3 item 4), two cores in one harness.
 
-sync: a slave with sync_en_i waits for the master's sync_o (its valley) and from then on its carrier
-equals the master's on every clock (checked at every edge of either carrier's valley/peak pulses and at
-random clocks); without sync_en_i the same slave start is misaligned (the check can fail).
+sync: a slave with sync_en_i waits for the master's sync_o (the clock before its valley) and from that
+valley on its carrier equals the master's on every clock (checked at every edge of either carrier's
+valley/peak pulses and at random clocks); without sync_en_i the same slave start is misaligned (the check
+can fail).
 ADC trigger: adc_trig_o pulses exactly at the valleys, the peaks or both, as selected, one clock each.
 """
 from __future__ import annotations
@@ -53,9 +54,13 @@ async def sync_aligns_slave(dut):
     await clock_cycles(dut.clk, 5)
     await ReadOnly()
     assert int(dut.running_s_o.value) == 0 and int(dut.carrier_s_o.value) == 0, "slave started before sync"
-    await RisingEdge(dut.sync_m_o)                   # the master's valley: the slave starts with it
+    await RisingEdge(dut.sync_m_o)                   # the clock before the master's valley
     await ReadOnly()
-    assert int(dut.valley_s_o.value) == 1 and int(dut.carrier_s_o.value) == int(dut.carrier_m_o.value) == 0
+    assert int(dut.valley_m_o.value) == 0 and int(dut.running_s_o.value) == 0 and int(dut.carrier_s_o.value) == 0
+    await RisingEdge(dut.clk)                        # the master's valley: the slave starts with it
+    await ReadOnly()
+    assert int(dut.valley_m_o.value) == int(dut.valley_s_o.value) == 1
+    assert int(dut.carrier_s_o.value) == int(dut.carrier_m_o.value) == 0
     assert await aligned_for(dut, 8 * P) == 0
     # the slave keeps running aligned; later sync_o pulses change nothing
     assert int(dut.running_s_o.value) == 1

@@ -165,7 +165,7 @@ async def dead_time_change_at_valley(dut):
 @cocotb.test()
 async def clamps_and_disable(dut):
     """m far beyond the hexagon and a period below the minimum are clamped and flagged; disabling mid-pulse turns
-    every gate off on the next clock; the core restarts cleanly."""
+    every gate off on the next clock; the core restarts cleanly; a clamped period forces no update."""
     tb = CoreTB(dut)
     u = Inputs(FW(300.0), 0xFFFF, 20, 3)
     await tb.reset(u)
@@ -177,6 +177,13 @@ async def clamps_and_disable(dut):
     tb.set_inputs(u2)
     await check_run(tb, u2, const(u2), 60)
     assert int(dut.sat_o.value) == 0 and int(dut.period_clamp_o.value) == 0
+    # peak updates with the period clamped: the clamped period equals the active one, so no valley is a
+    # forced update (a forced update compared with the port's value instead would update every valley)
+    u3 = Inputs(FW(300.0), MW(0.5), 20, 3, upd=fixed.UPD_PEAK)
+    await tb.reset(u3)
+    rtl, exp = await tb.run(u3, const(u3), 12)
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp, table_i=False)              # peak updates: no one pattern per period
 
 
 @cocotb.test()

@@ -583,7 +583,7 @@ module svpwm_core #(
     deadtime #(.DtWidth(DtWidth)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .en_i    (trip_sync ? safe_lo_q : (en_i && run && pole_valid)),
+      .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run: formal)
       .brake_i (brake),
       .pole_i  (pole[ph]),
       .dt_i    (dt_q),              // deadtime reads them a clock ahead: a new dead time and minimum
@@ -673,6 +673,8 @@ module svpwm_core #(
   always_comb if (Compact && rst_ni) assert (updv_q && !updp_q);
   always_comb if (rst_ni) assert (cz_q == (cnt_q == '0));
   always_comb if (Compact && rst_ni && start_q) assert (ev_valley_q);
+  // the poles are valid only while the core runs (the legs' enable reads en_i and pole_valid alone)
+  always_comb if (rst_ni && pole_valid) assert (run);
   // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
     assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && mp_cfg_q == $past(mp_cfg_q)

@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_carrier: up/down (centre-aligned) carrier counter 0 -> P -> 0, one step per clock.
-// Parameters: CntWidth - counter / period width in bits.
+// Parameters: CntWidth - counter / period width in bits; MinPeriod - the smallest period_i the user
+// applies (svpwm_core: its MinPeriod clamp); from 2 on the one-clock-half-period case is left out.
 // f_sw = f_clk / (2 * period): the count runs 0,1,..,P-1 (counting up) then P,P-1,..,1 (counting down).
 // Latency: none, count_o / up_o are the registers. The period is taken only at the valley: it loads
 // in the cycle load_o is high (the last cycle before a valley, or any idle cycle) and is active from
 // the valley on, so a period never changes in mid-carrier (Minas sec. III-A: WG_COUNTER/WG_RELOAD).
-// Restrictions: period_i >= 1 (svpwm_core clamps it to MinPeriod).
+// Restrictions: period_i >= MinPeriod >= 1 (svpwm_core clamps it to its MinPeriod).
 `default_nettype none
 
 module svpwm_carrier #(
-  parameter int CntWidth = 16
+  parameter int CntWidth  = 16,
+  parameter int MinPeriod = 1
 ) (
   input  logic                clk_i,       // core clock
   input  logic                rst_ni,      // asynchronous reset, active low
@@ -27,6 +29,11 @@ module svpwm_carrier #(
   if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
     initial $fatal(1, "svpwm_carrier: CntWidth must be 8..16, got %0d", CntWidth);
   end
+  if (MinPeriod < 1 || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
+    initial $fatal(1, "svpwm_carrier: MinPeriod must be 1..2^CntWidth-1, got %0d", MinPeriod);
+  end
+
+  localparam bit OneClk = MinPeriod < 2;     // a one-clock half period can be applied
 
   logic [CntWidth-1:0] count_d, count_q, period_d, period_q;
   logic                up_d, up_q;
@@ -47,7 +54,7 @@ module svpwm_carrier #(
     up_d     = up_q;
     period_d = load_o ? period_i : period_q;
     pm2_d    = load_o ? period_i - CntWidth'(2) : pm2_q;
-    p1_d     = load_o ? period_i == CntWidth'(1) : p1_q;
+    p1_d     = load_o ? OneClk && period_i == CntWidth'(1) : p1_q;
     if (!run_i) begin
       count_d = '0;
       up_d    = 1'b1;
@@ -58,7 +65,7 @@ module svpwm_carrier #(
     end
     // next clock counting up at count == P - 1: after a load (count 0) when P == 1, else one step
     // after count == P - 2 counting up (never right after the top itself: the count turns down)
-    topu_d = load_o ? (period_i == CntWidth'(1)) : (up_q && !topu_q && count_q == pm2_q);
+    topu_d = load_o ? (OneClk && period_i == CntWidth'(1)) : (up_q && !topu_q && count_q == pm2_q);
     peak_d = run_i && topu_q;               // next clock: count == period, down
     // next clock: count == 1, down (from 2 down, or from the peak of a one-clock half period)
     ld_d   = run_i && (topu_q ? p1_q : (!up_q && count_q == CntWidth'(2)));
@@ -99,7 +106,7 @@ module svpwm_carrier #(
   logic f_past_valid = 1'b0;
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
-  always_comb assume (period_i != '0);
+  always_comb assume (period_i >= CntWidth'(MinPeriod) && period_i != '0);
   // the carrier never leaves [0, period]
   always_comb if (rst_ni) assert (count_q <= period_q);
   always_comb if (rst_ni && up_q) assert (count_q < period_q || period_q == '0);

@@ -258,7 +258,7 @@ module svpwm_core #(
   // not from en_i, the period compare and its mux); the core idles >= 4 clocks after reset (armed_q)
   assign period_load = run ? period_next_q : period_clamped_q;
 
-  svpwm_carrier #(.CntWidth(CntWidth)) u_carrier (
+  svpwm_carrier #(.CntWidth(CntWidth), .MinPeriod(MinPeriod)) u_carrier (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
     .run_i      (run),

@@ -321,33 +321,34 @@ module svpwm_core #(
     end
   end
 
-  // ---- reference registers: taken at an update's sample ---------------------------------------
-  logic [2:0]         mode_q;
-  logic [15:0]        m_q, theta_q, vf_boost_q, vf_slope_q, vf_mmax_q;
-  logic signed [15:0] v1_q, v2_q;
-  logic [1:0]         dpwm_q;
+  // ---- reference registers: taken at an update's sample. Three 16-bit slots hold the inputs the mode
+  // reads (fixed.input_slots): s0 = m (FREQ, POLAR, invalid) / vf_boost (VF) / v1 (AB, DQ), s1 = theta /
+  // vf_slope (VF), s2 = v2 / vf_mmax (VF); the calculator's ports of one slot share it (a mode never reads
+  // two inputs of one slot, and fixed.modulate reads no input its mode does not use) -----------------
+  logic [2:0]  mode_q;
+  logic [15:0] s0_d, s0_q, s1_d, s1_q, s2_d, s2_q;
+  logic [1:0]  dpwm_q;
+  logic        in_vf, in_xy;
+
+  assign in_vf = !Compact && mode_i == 3'(svpwm_pkg::ModeVf);
+  assign in_xy = !Compact && (mode_i == 3'(svpwm_pkg::ModeAb) || mode_i == 3'(svpwm_pkg::ModeDq));
+  assign s0_d  = in_vf ? vf_boost_i : in_xy ? v1_i : m_i;
+  assign s1_d  = in_vf ? vf_slope_i : theta_i;
+  assign s2_d  = in_vf ? vf_mmax_i : v2_i;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      mode_q     <= '0;
-      m_q        <= '0;
-      theta_q    <= '0;
-      v1_q       <= '0;
-      v2_q       <= '0;
-      vf_boost_q <= '0;
-      vf_slope_q <= '0;
-      vf_mmax_q  <= '0;
-      dpwm_q     <= '0;
+      mode_q <= '0;
+      s0_q   <= '0;
+      s1_q   <= '0;
+      s2_q   <= '0;
+      dpwm_q <= '0;
     end else if (event_now) begin
-      mode_q     <= mode_i;
-      m_q        <= m_i;
-      theta_q    <= theta_i;
-      v1_q       <= v1_i;
-      v2_q       <= v2_i;
-      vf_boost_q <= vf_boost_i;
-      vf_slope_q <= vf_slope_i;
-      vf_mmax_q  <= vf_mmax_i;
-      dpwm_q     <= dpwm_i;
+      mode_q <= mode_i;
+      s0_q   <= s0_d;
+      s1_q   <= s1_d;
+      s2_q   <= s2_d;
+      dpwm_q <= dpwm_i;
     end
   end
 
@@ -414,14 +415,14 @@ module svpwm_core #(
     .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held at 0
                                                                     // otherwise so simulators do not
                                                                     // re-evaluate the calculator every clock
-    .theta_i    (theta_q),
-    .m_i        (m_q),
+    .theta_i    (s1_q),
+    .m_i        (s0_q),
     .fabs_i     (fabs_q),
-    .v1_i       (v1_q),
-    .v2_i       (v2_q),
-    .vf_boost_i (vf_boost_q),
-    .vf_slope_i (vf_slope_q),
-    .vf_mmax_i  (vf_mmax_q),
+    .v1_i       (s0_q),
+    .v2_i       (s2_q),
+    .vf_boost_i (s0_q),
+    .vf_slope_i (s1_q),
+    .vf_mmax_i  (s2_q),
     .dpwm_i     (dpwm_q),
     // the compact variant's updates are valley updates only (start_q implies ev_valley_q): it reads the
     // next-period registers directly, which hold from the sample to the next valley's sample (a whole

@@ -325,6 +325,21 @@ def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int
     return sector, dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm), sat, err
 
 
+def input_slots(mode: int, *, m: int = 0, theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0,
+                vf_slope: int = 0, vf_mmax: int = 0) -> dict:
+    """The reference as svpwm_core's calculator sees it: the core keeps three 16-bit slots of the sampled
+    inputs, chosen by the mode (s0 = vf_boost in VF, v1 in AB / DQ, else m; s1 = vf_slope in VF, else theta;
+    s2 = vf_mmax in VF, else v2), and every calculator input of a slot reads it. Returns the keyword inputs
+    of modulate() so; modulate() gives the same result for them as for the inputs themselves, because no
+    mode reads two inputs of one slot (model/tests/test_input_slots.py)."""
+    s0 = vf_boost if mode == MODE_VF else v1 if mode in (MODE_AB, MODE_DQ) else m
+    s1 = vf_slope if mode == MODE_VF else theta
+    s2 = vf_mmax if mode == MODE_VF else v2
+    s0, s1, s2 = s0 & 0xFFFF, s1 & 0xFFFF, s2 & 0xFFFF
+    signed = lambda x: x - 0x10000 if x & 0x8000 else x      # noqa: E731  (v1 / v2 ports are Q2.14)
+    return dict(m=s0, vf_boost=s0, v1=signed(s0), theta=s1, vf_slope=s1, v2=signed(s2), vf_mmax=s2)
+
+
 def angle_step(sector: int, angle: int, step: int, clocks: int) -> tuple[int, int]:
     """Advance the phase accumulator by ``clocks`` clocks of frequency word ``step`` (exact, modulo 360 deg)."""
     full = 6 << PHASE_WIDTH

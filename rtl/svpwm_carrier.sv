@@ -6,6 +6,7 @@
 // Latency: none, count_o / up_o are the registers. The period is taken only at the valley: it loads
 // in the cycle load_o is high (the last cycle before a valley, or any idle cycle) and is active from
 // the valley on, so a period never changes in mid-carrier (Minas sec. III-A: WG_COUNTER/WG_RELOAD).
+// Reset: count 0, counting up, period 2 (used as is if run_i rises in the first clock after reset).
 // Restrictions: period_i >= MinPeriod >= 1 (svpwm_core clamps it to its MinPeriod).
 `default_nettype none
 
@@ -75,10 +76,10 @@ module svpwm_carrier #(
     if (!rst_ni) begin
       count_q  <= '0;
       up_q     <= 1'b1;
-      period_q <= CntWidth'(1);
-      pm2_q    <= '1;                   // period 1: -1
-      topu_q   <= 1'b1;                 // count 0 == period 1 - 1, up
-      p1_q     <= 1'b1;
+      period_q <= CntWidth'(2);           // (every flag below then resets to 0)
+      pm2_q    <= '0;
+      topu_q   <= 1'b0;
+      p1_q     <= 1'b0;
       peak_q   <= 1'b0;
       ld_q     <= 1'b0;
       vz_q     <= 1'b1;

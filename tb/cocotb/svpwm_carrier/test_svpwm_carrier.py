@@ -7,7 +7,7 @@ Spec (rtl/svpwm_carrier.sv header): the count runs 0, 1, .., P-1 counting up (up
 carrier period); peak_o: running, count P and down; load_o: the last cycle before a valley (down and
 count 1) or any idle cycle -- period_i is taken in that cycle and active (period_o) from the next one,
 so a period never changes mid-carrier. run_i low: hold at the valley (0, up) from the next clock on.
-Reset: count 0, up, period 1. The reference below is that text as a generator, one tuple per clock.
+Reset: count 0, up, period 2. The reference below is that text as a generator, one tuple per clock.
 
 Builds: CntWidth 16 (default) and 8 (the largest period, 255, is run too).
 """
@@ -26,9 +26,9 @@ from simrun import REPO, run_sim
 CLK_NS = 10
 
 
-def carrier_ref(inputs, count=0, up=1, period=1):
+def carrier_ref(inputs, count=0, up=1, period=2):
     """Expected (count, up, period_o, valley, peak, load, pre_peak) of each clock for per-clock (run_i,
-    period_i), starting from the reset state (count 0, counting up, period 1)."""
+    period_i), starting from the reset state (count 0, counting up, period 2)."""
     for run, period_i in inputs:
         valley = int(run and up and count == 0)
         peak = int(run and not up and count == period)
@@ -66,7 +66,7 @@ class CarrierTB:
         await FallingEdge(d.clk)
         await FallingEdge(d.clk)
         d.rst_ni.value = 1
-        self.state = dict(count=0, up=1, period=1)
+        self.state = dict(count=0, up=1, period=2)
 
     async def per_clock(self, inputs, what=""):
         """Drive (run_i, period_i) per clock from a falling edge; compare every output in every clock.
@@ -162,9 +162,10 @@ async def switching_frequency(dut):
         await tb.reset(p)
         dut.run_i.value = 1
         # valley_o is combinational in run_i: the first valley starts with the write of run_i, so
-        # measure from the second valley on (all later ones start at a rising clock edge)
+        # measure from the second valley on (all later ones start at a rising clock edge); run_i rises in
+        # the first clock after reset, so that first period has the reset period (2)
         await with_timeout(RisingEdge(dut.valley_o), 2 * CLK_NS, "ns")
-        await with_timeout(RisingEdge(dut.valley_o), (2 * p + 1) * CLK_NS, "ns")
+        await with_timeout(RisingEdge(dut.valley_o), (2 * max(p, 2) + 1) * CLK_NS, "ns")
         t_prev = get_sim_time("ns")
         for _ in range(n):
             if p > 1:

@@ -9,7 +9,9 @@
 // One LSB of step_i is 60 deg / 2^PhaseWidth per clock, i.e. f_out = step * f_clk / (6 * 2^PhaseWidth).
 // Latency: none, sector_o / angle_o are the registers. Negative steps rotate backwards, zero stands still.
 // Timing (CarrySelect 1): only the low FreqWidth bits are one carry chain; the upper bits (angle + 0 /
-// +1 / -1) and the sector (wrap at 60 deg / below 0) are formed beside it and selected by its carry.
+// +1 / -1) are formed beside it and selected by its carry; the sector's wrap (at 60 deg / below 0) is
+// the sum bit of two more adder bits on top of the chain (operands from registers), so it leaves the
+// chain with no logic behind it (also with CarrySelect 0, where it is the chain's top sum bit).
 `default_nettype none
 
 module svpwm_phase_acc #(
@@ -34,25 +36,31 @@ module svpwm_phase_acc #(
 
   logic [PhaseWidth-1:0] angle_d, angle_q, angle_new;
   logic [2:0]            sector_d, sector_q, sec_up, sec_dn;
-  logic                  neg, wrap_up, wrap_dn;
+  logic                  neg, wrap;     // wrap: the sum leaves [0, 60 deg) (up if !neg, down if neg)
 
   assign neg = step_i[FreqWidth-1];
 
   if (CarrySelect) begin : gen_csel
-    logic [FreqWidth:0] lo_sum;                  // low bits + step bits, carry out in the MSB
-    logic [HiWidth-1:0] hi, hi_inc, hi_dec, hi_new;
-    logic               c;
+    // angle + sign-extended step = {hi + ext + c, low bits}, ext = -1 for a negative step, else 0, c the
+    // carry out of the low FreqWidth bits. The sector wraps on c && &hi (step >= 0: reached 60 deg) or
+    // on !c && hi == 0 (step < 0: went below 0). Both are formed by two more bits on top of the low
+    // adder, whose operands come from registers: bit F with x = neg | &hi, y = neg & (hi != 0) carries
+    // out maj(x, y, c), i.e. c && &hi for a step >= 0 and c || hi != 0 for a step < 0; bit F + 1 adds
+    // neg, so its sum is the wrap itself, out of the carry chain with no LUT behind it.
+    logic [FreqWidth+1:0] lo_sum;                // low bits + step bits; wrap in the MSB
+    logic [HiWidth-1:0]   hi, hi_inc, hi_dec, hi_new;
+    logic                 x, y, c;
 
-    // angle + sign-extended step = {hi + ext + c, lo_sum}, ext = -1 for a negative step, else 0
-    assign lo_sum    = {1'b0, angle_q[FreqWidth-1:0]} + {1'b0, step_i};
-    assign c         = lo_sum[FreqWidth];
     assign hi        = angle_q[PhaseWidth-1:FreqWidth];
+    assign x         = neg || (&hi);
+    assign y         = neg && (hi != '0);
+    assign lo_sum    = {neg, x, angle_q[FreqWidth-1:0]} + {1'b0, y, step_i};
+    assign c         = lo_sum[FreqWidth] ^ x ^ y;   // sum bit F = x ^ y ^ c
+    assign wrap      = lo_sum[FreqWidth+1];
     assign hi_inc    = hi + 1'b1;
     assign hi_dec    = hi - 1'b1;
     assign hi_new    = (neg == c) ? hi : c ? hi_inc : hi_dec;
     assign angle_new = {hi_new, lo_sum[FreqWidth-1:0]};
-    assign wrap_up   = !neg && c && (&hi);       // reached 60 deg: next sector
-    assign wrap_dn   = neg && !c && (hi == '0);  // went below 0: previous sector
   end else begin : gen_chain
     // angle + step in PhaseWidth + 1 bits (step sign-extended): the top bit is set exactly when the
     // sum left [0, 2^PhaseWidth), i.e. reached 60 deg (step >= 0) or went below 0 (step < 0)
@@ -60,8 +68,7 @@ module svpwm_phase_acc #(
 
     assign sum       = {1'b0, angle_q} + {{(HiWidth + 1){neg}}, step_i};
     assign angle_new = sum[PhaseWidth-1:0];
-    assign wrap_up   = !neg && sum[PhaseWidth];
-    assign wrap_dn   = neg && sum[PhaseWidth];
+    assign wrap      = sum[PhaseWidth];
   end
 
   assign sec_up  = (sector_q >= 3'd5) ? 3'd0 : sector_q + 3'd1;
@@ -72,8 +79,7 @@ module svpwm_phase_acc #(
     sector_d = sector_q;
     if (run_i) begin
       angle_d = angle_new;
-      if (wrap_dn)      sector_d = sec_dn;
-      else if (wrap_up) sector_d = sec_up;
+      if (wrap) sector_d = neg ? sec_dn : sec_up;   // the direction from registers only
     end
   end
 

@@ -17,6 +17,10 @@
 // valley). The module compares its counter with them a clock early, so its decision reads only
 // flip-flops ("held" flags, not a 10-bit compare). In the first clock after reset no gate turns on
 // (nothing is held yet, whatever dt_i).
+// Timing: en_i, brake_i and pole_i arrive late in svpwm_core, so they only select between next states
+// formed from registers (en_i in the last LUT, brake_i / pole_i in the two last), and no counter or
+// flag register depends on them: the counter and its compares run a clock behind the decision for both
+// outcomes (the gates changed in the last clock or not) and a registered "changed" bit selects.
 // Parameters: DtWidth - dead-time / minimum-pulse width in bits (max 2^DtWidth - 1 clocks).
 // Latency: one clock from pole_i to a turn-off, 1 + dt clocks to the complementary turn-on (dt in force).
 // Model: model/svpwm_model/deadtime.py (step_cycle, simulate_events).
@@ -41,61 +45,93 @@ module deadtime #(
   end
 
   // cnt = clocks the gate state has been unchanged, this one included (saturating at 2^DtWidth - 1;
-  // 0 only in the clock after reset). The register holds the count the NEXT clock has if the state
-  // stays: min(cnt + 1, 2^DtWidth - 1).
-  logic               hi_d, hi_q, lo_d, lo_q, chg;
-  logic [DtWidth-1:0] cnt1_d, cnt1_q;
-  logic               held_d, held_q;         // cnt >= dt and cnt >= 1: the present state has lasted dt
-  logic               held_on_d, held_on_q;   // ... and cnt >= mp (the minimum on-time is served)
-  logic               dtz_d, dtz_q;           // dt == 0 (a gate swaps straight to the other)
+  // 0 only in the clock after reset); cnt1 = min(cnt + 1, 2^DtWidth - 1), the count the NEXT clock has
+  // if the state stays. Nothing of the counter and the flags waits for the late inputs: the counter and
+  // the compares run one clock behind the decision, for both cases (the gates change in this clock or
+  // stay), and chg_q (the last clock changed the gates) selects in the next clock.
+  //   ncnt1_q: ~cnt1 unless the last clock changed the gates (then cnt1 = 2): a down-counter saturating
+  //   at 0, so that dt <= cnt1 is the carry-out of dt + ncnt1_q, a plain adder chain without inverters.
+  //   held = cnt >= dt and cnt >= 1 (the present state has lasted dt): after a change cnt = 1, so
+  //   held = (the last clock's dt <= 1), dt_le1_q; else held_stay_q, the last clock's dt <= cnt1.
+  //   held_mp the same for mp; held_on = held && held_mp (a gate on may turn off: minimum on-time served).
+  localparam logic [DtWidth-1:0] CntMax   = '1;
+  localparam logic [DtWidth-1:0] Cnt1Rst  = DtWidth'(1);                                // cnt1 after reset
+  localparam logic [DtWidth-1:0] Cnt1Chg  = (DtWidth > 1) ? DtWidth'(2) : DtWidth'(1);  // cnt1 after a change
+  localparam logic [DtWidth-1:0] Cnt1Chg2 = (Cnt1Chg == CntMax) ? Cnt1Chg : Cnt1Chg + 1'b1;  // a clock later
 
-  always_comb begin
-    hi_d = hi_q;
-    lo_d = lo_q;
-    if (!en_i) begin
-      hi_d = 1'b0;
-      lo_d = 1'b0;
-    end else if (hi_q) begin
-      if (brake_i || (!pole_i && held_on_q)) begin   // turn off (or swap if dt == 0)
-        hi_d = 1'b0;
-        lo_d = dtz_q;
-      end
-    end else if (lo_q) begin
-      if (!brake_i && pole_i && held_on_q) begin
-        lo_d = 1'b0;
-        hi_d = dtz_q;
-      end
-    end else if (held_q) begin          // both off for dt clocks: the wanted gate may turn on
-      hi_d = pole_i && !brake_i;
-      lo_d = !pole_i || brake_i;
-    end
-    chg = (hi_d != hi_q) || (lo_d != lo_q);
-  end
+  logic               hi_d, hi_q, lo_d, lo_q;
+  logic               chg_d, chg_q;            // the gates change in this clock / changed in the last
+  logic [DtWidth-1:0] ncnt1_d, ncnt1_q;        // ~cnt1 if the last clock did not change the gates
+  logic               held_stay_d, held_stay_q, held_mp_stay_d, held_mp_stay_q;
+  logic               dt_le1_d, dt_le1_q, mp_le1_d, mp_le1_q;
+  logic               dtz_d, dtz_q;            // dt == 0 (a gate swaps straight to the other)
+  logic               held, held_mp, held_on;
+  logic [DtWidth:0]   dt_sum, mp_sum;
 
-  // the next clock's flags: its count is 1 after a change, else cnt1_q (both compares run in parallel
-  // with the decision above, which only selects)
-  always_comb begin
-    cnt1_d    = chg ? ((DtWidth > 1) ? DtWidth'(2) : DtWidth'(1)) : (&cnt1_q) ? cnt1_q : cnt1_q + 1'b1;
-    held_d    = chg ? (dt_i >> 1) == '0 : (dt_i <= cnt1_q);
-    held_on_d = held_d && (chg ? (mp_i >> 1) == '0 : (mp_i <= cnt1_q));
-    dtz_d     = (dt_i == '0);
-  end
+  assign ncnt1_d        = chg_q ? ~Cnt1Chg2 : (ncnt1_q == '0) ? ncnt1_q : ncnt1_q - 1'b1;
+  assign dt_sum         = {1'b0, dt_i} + {1'b0, ncnt1_q};       // no carry-out: dt <= ~ncnt1_q
+  assign mp_sum         = {1'b0, mp_i} + {1'b0, ncnt1_q};
+  assign dt_le1_d       = (dt_i >> 1) == '0;
+  assign mp_le1_d       = (mp_i >> 1) == '0;
+  // dt <= cnt1; after a change dt <= 2 (written as == compares: a <= with a constant becomes a carry chain)
+  assign held_stay_d    = chg_q ? (dt_le1_d || dt_i == Cnt1Chg) : !dt_sum[DtWidth];
+  assign held_mp_stay_d = chg_q ? (mp_le1_d || mp_i == Cnt1Chg) : !mp_sum[DtWidth];
+  assign dtz_d          = (dt_i == '0);
+  assign held           = chg_q ? dt_le1_q : held_stay_q;
+  assign held_mp        = chg_q ? mp_le1_q : held_mp_stay_q;
+  assign held_on        = held && held_mp;
+
+  // The next gates for each target, from registered state only; the late inputs (en_i, brake_i,
+  // pole_i) only select between the four (a Shannon split on them, en_i last). Target HI (pole_i high):
+  // a low side on turns off once its minimum on-time is served (a swap if dt == 0), with both off the
+  // high side turns on once the dead time is served; LO the mirror image; BRAKE: the high side turns
+  // off at once (a swap if dt == 0), the low side turns on after the dead time; OFF (en_i low): both off.
+  logic hi_hi, lo_hi, hi_lo, lo_lo, lo_brk, off, chg_off, chg_brk, chg_hi, chg_lo;
+  assign off     = !hi_q && !lo_q;
+  assign hi_hi   = hi_q || (lo_q ? (held_on && dtz_q) : held);
+  assign lo_hi   = lo_q && !held_on;
+  assign hi_lo   = hi_q && !held_on;
+  assign lo_lo   = lo_q || (hi_q ? (held_on && dtz_q) : held);
+  assign lo_brk  = lo_q || (hi_q ? dtz_q : held);
+  assign chg_off = !off;
+  assign chg_brk = hi_q || (off && held);
+  assign chg_hi  = (lo_q && held_on) || (off && held);
+  assign chg_lo  = (hi_q && held_on) || (off && held);
+
+  // {hi, lo, change} of the next clock for each target, and the selection as two LUT-sized terms and
+  // an en_i mux: pole_i / brake_i pass 2 LUT levels, en_i one (a plain if / else chain would put en_i
+  // behind a 5-input function)
+  logic [2:0] nx_brk, nx_hi, nx_lo, nx_off, sel_pole, sel_brk, nx;
+  assign nx_off   = {1'b0, 1'b0, chg_off};
+  assign nx_brk   = {1'b0, lo_brk, chg_brk};
+  assign nx_hi    = {hi_hi, lo_hi, chg_hi};
+  assign nx_lo    = {hi_lo, lo_lo, chg_lo};
+  assign sel_pole = brake_i ? 3'b0 : pole_i ? nx_hi : nx_lo;
+  assign sel_brk  = brake_i ? nx_brk : 3'b0;
+  assign nx       = en_i ? (sel_pole | sel_brk) : nx_off;
+  assign {hi_d, lo_d, chg_d} = nx;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      hi_q      <= 1'b0;
-      lo_q      <= 1'b0;
-      cnt1_q    <= DtWidth'(1);          // cnt = 0: a reset is a turn-off, the dead time runs from its release
-      held_q    <= 1'b0;
-      held_on_q <= 1'b0;
-      dtz_q     <= 1'b0;                 // (read only while a gate is on)
+      hi_q           <= 1'b0;
+      lo_q           <= 1'b0;
+      chg_q          <= 1'b0;
+      ncnt1_q        <= ~Cnt1Rst;      // cnt = 0: a reset is a turn-off, the dead time runs from its release
+      held_stay_q    <= 1'b0;          // nothing held in the first clock (cnt = 0)
+      held_mp_stay_q <= 1'b0;
+      dt_le1_q       <= 1'b0;          // (read only after a change)
+      mp_le1_q       <= 1'b0;
+      dtz_q          <= 1'b0;          // (read only while a gate is on)
     end else begin
-      hi_q      <= hi_d;
-      lo_q      <= lo_d;
-      cnt1_q    <= cnt1_d;
-      held_q    <= held_d;
-      held_on_q <= held_on_d;
-      dtz_q     <= dtz_d;
+      hi_q           <= hi_d;
+      lo_q           <= lo_d;
+      chg_q          <= chg_d;
+      ncnt1_q        <= ncnt1_d;
+      held_stay_q    <= held_stay_d;
+      held_mp_stay_q <= held_mp_stay_d;
+      dt_le1_q       <= dt_le1_d;
+      mp_le1_q       <= mp_le1_d;
+      dtz_q          <= dtz_d;
     end
   end
 
@@ -107,23 +143,35 @@ module deadtime #(
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
   // the dead time and minimum pulse in force (the ports one clock late), and the count itself (the
-  // counter the flags replace: cnt_q >= dt_i of the earlier design)
+  // counter the flags replace: cnt_q >= dt_i of the earlier design), updated in the clock of the change
+  logic               f_chg, f_chg_q;
   logic [DtWidth-1:0] f_dt_q, f_mp_q, f_cnt_q;
+  assign f_chg = (hi_d != hi_q) || (lo_d != lo_q);
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       f_dt_q  <= '0;
       f_mp_q  <= '0;
       f_cnt_q <= '0;
+      f_chg_q <= 1'b0;
     end else begin
       f_dt_q  <= dt_i;
       f_mp_q  <= mp_i;
-      f_cnt_q <= chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
+      f_cnt_q <= f_chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
+      f_chg_q <= f_chg;
     end
   end
+  // the counter one clock behind: chg_q is the last clock's change, ~ncnt1_q the shadow's count + 1
+  // unless that change restarted it
+  always_comb assert (chg_q == f_chg_q);
+  always_comb assert (chg_q ? f_cnt_q == DtWidth'(1) : ~ncnt1_q == ((&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1));
   // the precomputed flags are the compares they replace
-  always_comb assert (cnt1_q == ((&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1));
-  always_comb assert (held_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
-  always_comb assert (held_on_q == (held_q && f_cnt_q >= f_mp_q));
+  always_comb assert (held == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb assert (held_mp == (f_cnt_q != '0 && f_cnt_q >= f_mp_q));
+  always_comb assert (held_on == (held && f_cnt_q >= f_mp_q));
+  always_comb if (!chg_q) assert (held_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb if (!chg_q) assert (held_mp_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_mp_q));
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (dt_le1_q == (f_dt_q <= 1));
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (mp_le1_q == (f_mp_q <= 1));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (dtz_q == (f_dt_q == '0));
   // never both gates of the leg on
   always_comb assert (!(hi_q && lo_q));
@@ -143,6 +191,7 @@ module deadtime #(
   always_comb cover (lo_q && f_dt_q > DtWidth'(2));
   always_comb cover (lo_q && brake_i && f_dt_q > DtWidth'(2));
   always_comb cover (hi_q && f_dt_q != dt_i);
+  always_comb cover (held_on && chg_q && f_dt_q <= DtWidth'(1) && f_mp_q <= DtWidth'(1));
 `endif
 
 endmodule

@@ -138,7 +138,7 @@ async def reset_turn_off(dut):
         await FallingEdge(d.clk)
         assert str(d.hi_o.value) == "1", (f"dt={dt}: hi {d.hi_o.value} lo {d.lo_o.value} en {d.en_i.value} "
                                           f"brake {d.brake_i.value} pole {d.pole_i.value} dt {d.dt_i.value} "
-                                          f"mp {d.mp_i.value} rst {d.rst_ni.value} cnt+1 {d.u_dut.cnt1_q.value}")
+                                          f"mp {d.mp_i.value} rst {d.rst_ni.value} ~(cnt+1) {d.u_dut.ncnt1_q.value} chg {d.u_dut.chg_q.value}")
         d.rst_ni.value = 0                          # reset while the high side is on
         await FallingEdge(d.clk)
         assert (int(d.hi_o.value), int(d.lo_o.value)) == (0, 0)

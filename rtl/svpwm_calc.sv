@@ -125,18 +125,20 @@ module svpwm_calc #(
     assign {qsh, ald, sec_op, rsel, out_op} = busy ? misc : 9'd0;
     assign done = busy && word[svpwm_pkg::UcDone];
 
-    // next fields: the operand of the next step
-    logic [2:0] src;
-    logic [4:0] opnd, cond;
-    logic [2:0] rc;
-    logic [1:0] binv_sel, cin_sel;
+    // next fields: the operand of the step after next (registered here: the operand multiplexers of the
+    // next step select from registers) and the condition selection of the step after that (registered
+    // here; the next step computes its condition bits into rbits_q / cbit_q)
+    logic [2:0] src_d, src_q;
+    logic [4:0] opnd_d, opnd_q, cond_d, cond_q;
+    logic [2:0] rc_d, rc_q;
+    logic [1:0] binv_sel_d, binv_sel_q, cin_sel_d, cin_sel_q;
 
-    assign src      = word[svpwm_pkg::UcSrc +: svpwm_pkg::UcSrcW];
-    assign opnd     = word[svpwm_pkg::UcOpnd +: svpwm_pkg::UcOpndW];
-    assign rc       = word[svpwm_pkg::UcRc +: svpwm_pkg::UcRcW];
-    assign cond     = word[svpwm_pkg::UcCond +: svpwm_pkg::UcCondW];
-    assign binv_sel = word[svpwm_pkg::UcBinv +: svpwm_pkg::UcBinvW];
-    assign cin_sel  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
+    assign src_d      = word[svpwm_pkg::UcSrc +: svpwm_pkg::UcSrcW];
+    assign opnd_d     = word[svpwm_pkg::UcOpnd +: svpwm_pkg::UcOpndW];
+    assign rc_d       = word[svpwm_pkg::UcRc +: svpwm_pkg::UcRcW];
+    assign cond_d     = word[svpwm_pkg::UcCond +: svpwm_pkg::UcCondW];
+    assign binv_sel_d = word[svpwm_pkg::UcBinv +: svpwm_pkg::UcBinvW];
+    assign cin_sel_d  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
 
     // ---- mode and conditions ---------------------------------------------------------------------------
     logic [2:0] mode;
@@ -167,10 +169,11 @@ module svpwm_calc #(
     logic                 midneg;
     logic [31:0]          c;
 
-    // Table 4-3 codes of the sector, registered beside it (sel == sector_sel(sec_q) from the first
-    // clock on: the ROM-like no-reset register loads every clock, also in reset)
+    // Table 4-3 codes of the sector, registered from it (sel == sector_sel(sec_q of the clock before): the
+    // builder places the out steps and the C_MIDSGN reads late enough; the ROM-like no-reset register loads
+    // every clock, also in reset)
     svpwm_sector_sel u_sel (
-      .sector_i (sec_d),
+      .sector_i (sec_q),
       .sel_o    (sel_d)
     );
     always_ff @(posedge clk_i) sel <= sel_d;
@@ -192,9 +195,9 @@ module svpwm_calc #(
     end
 
     // sector of the X, Y, Z signs (fixed.xyz_sector): q = (X, Z, -Y, -X, -Z, Y), the first s with
-    // q_s >= 0 > q_s+1 (none: the zero vector, sector 0)
+    // q_s >= 0 > q_s+1 (none: the zero vector, sector 0); sw_q: registered (the sector load reads it)
     logic [5:0] neg;
-    logic [2:0] sw, sw_mod3, sw1_mod3;
+    logic [2:0] sw, sw_q, sw_mod3, sw1_mod3;
     assign neg = {flags_q[svpwm_pkg::FNy], flags_q[svpwm_pkg::FPz], flags_q[svpwm_pkg::FPx], flags_q[svpwm_pkg::FPy], flags_q[svpwm_pkg::FNz], flags_q[svpwm_pkg::FNx]};
     // (a priority chain, not a for loop in an always_comb: that one hung Icarus 11 in a zero-time loop)
     logic [5:0] edge_s;                   // edge_s[s]: q_s >= 0 > q_s+1
@@ -228,20 +231,27 @@ module svpwm_calc #(
     assign acc_d = (busy && !hold) ? sum : acc_q;
 
     // ---- operand RAM ---------------------------------------------------------------------------------
-    logic [4:0] raddr, rbits;
+    // the condition bits of the step after next, from the registered condition selection and the flags,
+    // into registers (zero in the start clock: the selection is then the idle word's or stale)
+    logic [4:0] raddr;
+    logic [2:0] rbits, rbits_d, rbits_q;
+    logic       cbit, cbit_d, cbit_q;
+    assign cbit = c[cond_q];
     always_comb begin
-      unique case (rc)
-        3'(svpwm_pkg::RcC):     rbits = {4'd0, c[cond]};
-        3'(svpwm_pkg::RcSw):    rbits = {2'd0, sw_mod3};
-        3'(svpwm_pkg::RcSw1):   rbits = {2'd0, sw1_mod3};
-        3'(svpwm_pkg::RcSnap):  rbits = {2'd0, snap};
-        3'(svpwm_pkg::RcDpwm):  rbits = {3'd0, dpwm == 2'(svpwm_pkg::DpwmOff),
+      unique case (rc_q)
+        3'(svpwm_pkg::RcC):     rbits = {2'd0, cbit};
+        3'(svpwm_pkg::RcSw):    rbits = sw_mod3;
+        3'(svpwm_pkg::RcSw1):   rbits = sw1_mod3;
+        3'(svpwm_pkg::RcSnap):  rbits = snap;
+        3'(svpwm_pkg::RcDpwm):  rbits = {1'b0, dpwm == 2'(svpwm_pkg::DpwmOff),
                               (dpwm == 2'(svpwm_pkg::DpwmMax)) || ((dpwm == 2'(svpwm_pkg::Dpwm60)) && !flags_q[svpwm_pkg::FDp60])};
-        3'(svpwm_pkg::RcMerge): rbits = {3'd0, is_err, is_ab || is_dq};
-        default:     rbits = 5'd0;
+        3'(svpwm_pkg::RcMerge): rbits = {1'b0, is_err, is_ab || is_dq};
+        default:     rbits = 3'd0;
       endcase
     end
-    assign raddr = opnd | rbits;
+    assign rbits_d = busy ? rbits : 3'd0;
+    assign cbit_d  = busy && cbit;
+    assign raddr   = opnd_q | {2'd0, rbits_q};
 
     svpwm_calc_ram #(.Width(W)) u_ram (
       .clk_i   (clk_i),
@@ -252,17 +262,21 @@ module svpwm_calc #(
       .rdata_o (ram_q)
     );
 
-    // ---- sine ROM: address from ANG[15:8] = i ---------------------------------------------------------
+    // ---- sine ROM: address from ANG[15:8] = i of the clock before (the four addresses registered) -------
     logic [15:0] ang_d, ang_q, rom_q;
-    logic [8:0]  rom_addr;
+    logic [8:0]  rom_addr, ri_d, ri_q, ri1_d, ri1_q, rn_d, rn_q, rn1_d, rn1_q;
     logic [7:0]  ang_i;
     assign ang_i = ang_q[15:8];
+    assign ri_d  = {1'b0, ang_i};
+    assign ri1_d = {1'b0, ang_i} + 9'd1;
+    assign rn_d  = 9'd256 - {1'b0, ang_i};
+    assign rn1_d = 9'd255 - {1'b0, ang_i};
     always_comb begin
       unique case (rsel)
-        3'(svpwm_pkg::RomI):  rom_addr = {1'b0, ang_i};
-        3'(svpwm_pkg::RomI1): rom_addr = {1'b0, ang_i} + 9'd1;
-        3'(svpwm_pkg::RomN):  rom_addr = 9'd256 - {1'b0, ang_i};
-        3'(svpwm_pkg::RomN1): rom_addr = 9'd255 - {1'b0, ang_i};
+        3'(svpwm_pkg::RomI):  rom_addr = ri_q;
+        3'(svpwm_pkg::RomI1): rom_addr = ri1_q;
+        3'(svpwm_pkg::RomN):  rom_addr = rn_q;
+        3'(svpwm_pkg::RomN1): rom_addr = rn1_q;
         default:   rom_addr = 9'd0;
       endcase
     end
@@ -302,12 +316,14 @@ module svpwm_calc #(
     );
 
     // ---- AUX: the next step's non-RAM operand -------------------------------------------------------------
+    // the input the word selects (the operand of the step after next), registered sign-extended in in_q
     logic [15:0] in_sel;
     logic        in_signed;
+    logic [16:0] in_d, in_q;
     always_comb begin
       in_sel    = 16'd0;
       in_signed = 1'b0;
-      unique case (opnd[3:0])
+      unique case (opnd_d[3:0])
         4'(svpwm_pkg::InM):      in_sel = m_i;
         4'(svpwm_pkg::InTheta):  in_sel = Compact ? 16'd0 : theta_i;
         4'(svpwm_pkg::InV1):     begin in_sel = Compact ? 16'd0 : v1_i; in_signed = !Compact; end
@@ -321,11 +337,12 @@ module svpwm_calc #(
         default:      in_sel = 16'd0;
       endcase
     end
+    assign in_d = {in_signed && in_sel[15], in_sel};
 
     logic [31:0] p_sh;
     logic        rbit;
     always_comb begin
-      unique case (opnd[1:0])
+      unique case (opnd_q[1:0])
         2'd0:    begin p_sh = p >> svpwm_pkg::Psh0; rbit = p[svpwm_pkg::Psh0 - 1]; end
         2'd1:    begin p_sh = p >> svpwm_pkg::Psh1; rbit = p[svpwm_pkg::Psh1 - 1]; end
         2'd2:    begin p_sh = p >> svpwm_pkg::Psh2; rbit = p[svpwm_pkg::Psh2 - 1]; end
@@ -337,10 +354,10 @@ module svpwm_calc #(
     logic [15:0]         q_d, q_q;
     assign acc_s = acc_q;
     always_comb begin
-      unique case (src)
+      unique case (src_q)
         3'(svpwm_pkg::AsRom):  aux_d = W'(rom_q);
         3'(svpwm_pkg::AsProd): aux_d = W'(p_sh);
-        3'(svpwm_pkg::AsIn):   aux_d = in_signed ? W'($signed(in_sel)) : W'(in_sel);
+        3'(svpwm_pkg::AsIn):   aux_d = W'($signed(in_q));
         3'(svpwm_pkg::AsShr9): aux_d = W'(acc_s >>> 9);
         3'(svpwm_pkg::AsShr1): aux_d = W'(acc_s >>> 1);
         3'(svpwm_pkg::AsQ):    aux_d = W'(q_q);
@@ -350,16 +367,16 @@ module svpwm_calc #(
     end
 
     always_comb begin
-      unique case (binv_sel)
+      unique case (binv_sel_q)
         2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
-        2'(svpwm_pkg::BinvC):     binv_d = c[cond];
+        2'(svpwm_pkg::BinvC):     binv_d = cbit_q;
         2'(svpwm_pkg::BinvNsign): binv_d = !sign;
         default:       binv_d = 1'b0;
       endcase
-      unique case (cin_sel)
+      unique case (cin_sel_q)
         2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
         2'(svpwm_pkg::CinBinv): cin_d = binv_d;
-        2'(svpwm_pkg::CinRnd):  cin_d = ((src == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
+        2'(svpwm_pkg::CinRnd):  cin_d = ((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
         default:     cin_d = 1'b0;
       endcase
     end
@@ -376,7 +393,7 @@ module svpwm_calc #(
     // DQ: the sector of X, Y, Z counts from theta's sector: (sw + sector) mod 6
     logic [3:0] sec_sum;
     logic [2:0] sec_dq;
-    assign sec_sum = {1'b0, sw} + {1'b0, sec_q};
+    assign sec_sum = {1'b0, sw_q} + {1'b0, sec_q};
     assign sec_dq  = (sec_sum >= 4'd6) ? 3'(sec_sum - 4'd6) : sec_sum[2:0];
 
     always_comb begin
@@ -389,7 +406,7 @@ module svpwm_calc #(
       if (ald && pred_ok) ang_d = acc_q[15:0];
       unique case (sec_op)
         2'(svpwm_pkg::SecTheta): if (pred_ok) sec_d = acc_q[18:16];
-        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw;
+        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw_q;
         2'(svpwm_pkg::SecErr):   if (is_err) sec_d = 3'd0;
         default:      ;
       endcase
@@ -412,6 +429,20 @@ module svpwm_calc #(
         acc_q   <= '0;
         aux_q   <= '0;
         b_ram_q <= 1'b0;
+        src_q      <= '0;
+        opnd_q     <= '0;
+        binv_sel_q <= '0;
+        cin_sel_q  <= '0;
+        rc_q       <= '0;
+        cond_q     <= '0;
+        rbits_q    <= '0;
+        cbit_q     <= 1'b0;
+        in_q       <= '0;
+        sw_q       <= '0;
+        ri_q       <= '0;
+        ri1_q      <= '0;
+        rn_q       <= '0;
+        rn1_q      <= '0;
         binv_q  <= 1'b0;
         cin_q   <= 1'b0;
         flags_q <= '0;
@@ -425,7 +456,21 @@ module svpwm_calc #(
         busy_q  <= busy_d;
         acc_q   <= acc_d;
         aux_q   <= aux_d;
-        b_ram_q <= (src == 3'(svpwm_pkg::AsNone));
+        b_ram_q <= (src_q == 3'(svpwm_pkg::AsNone));
+        src_q      <= src_d;
+        opnd_q     <= opnd_d;
+        binv_sel_q <= binv_sel_d;
+        cin_sel_q  <= cin_sel_d;
+        rc_q       <= rc_d;
+        cond_q     <= cond_d;
+        rbits_q    <= rbits_d;
+        cbit_q     <= cbit_d;
+        in_q       <= in_d;
+        sw_q       <= sw;
+        ri_q       <= ri_d;
+        ri1_q      <= ri1_d;
+        rn_q       <= rn_d;
+        rn1_q      <= rn1_d;
         binv_q  <= binv_d;
         cin_q   <= cin_d;
         flags_q <= flags_d;

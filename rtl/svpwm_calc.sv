@@ -87,7 +87,8 @@ module svpwm_calc #(
     logic [svpwm_pkg::UcBits-1:0] word;
 
     assign busy   = busy_q;                      // == (pc_q != 0), registered
-    assign busy_d = (pc_d != 9'd0);
+    // == (pc_d != 0), written so that start_i / abort_i pass one LUT only
+    assign busy_d = !abort_i && (busy ? (pc_q != 9'(Latency - 1)) : start_i);
     always_comb begin
       pc_d = 9'd0;
       if (abort_i)                        pc_d = 9'd0;
@@ -129,7 +130,7 @@ module svpwm_calc #(
     // next step select from registers) and the condition selection of the step after that (registered
     // here; the next step computes its condition bits into rbits_q / cbit_q)
     logic [2:0] src_d, src_q;
-    logic [4:0] opnd_d, opnd_q, cond_d, cond_q;
+    logic [4:0] opnd_d, opnd_q, cond_d;
     logic [2:0] rc_d, rc_q;
     logic [1:0] binv_sel_d, binv_sel_q, cin_sel_d, cin_sel_q;
 
@@ -141,24 +142,31 @@ module svpwm_calc #(
     assign cin_sel_d  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
 
     // ---- mode and conditions ---------------------------------------------------------------------------
+    // the mode and DPWM decodes are registered (mode_i / dpwm_i hold from start_i on: valid from step 1,
+    // and nothing reads them in the start clock: the own fields and the condition bits are gated by busy)
     logic [2:0] mode;
     logic [1:0] dpwm;
-    logic       is_vf, is_ab, is_dq, is_th, is_err, pred_ok;
+    logic       is_vf, is_ab, is_dq, is_th, is_err, is_xy, pred_ok;
+    logic [5:0] mdec_d, mdec_q;          // {err, xy, th, dq, ab, vf}
+    logic [1:0] dpdec_d, dpdec_q;        // {DPWM off, DPWM max}
+    logic       dp60_d, dp60_q;          // DPWM1 (60 deg)
 
-    assign mode   = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
-    assign dpwm   = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
-    assign is_vf  = (mode == 3'(svpwm_pkg::ModeVf));
-    assign is_ab  = (mode == 3'(svpwm_pkg::ModeAb));
-    assign is_dq  = (mode == 3'(svpwm_pkg::ModeDq));
-    assign is_th  = (mode == 3'(svpwm_pkg::ModePolar)) || is_dq;
-    assign is_err = (mode > 3'(svpwm_pkg::ModeDq));
+    assign mode    = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
+    assign dpwm    = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
+    assign mdec_d  = {mode > 3'(svpwm_pkg::ModeDq),
+                      (mode == 3'(svpwm_pkg::ModeAb)) || (mode == 3'(svpwm_pkg::ModeDq)),
+                      (mode == 3'(svpwm_pkg::ModePolar)) || (mode == 3'(svpwm_pkg::ModeDq)),
+                      mode == 3'(svpwm_pkg::ModeDq), mode == 3'(svpwm_pkg::ModeAb), mode == 3'(svpwm_pkg::ModeVf)};
+    assign dpdec_d = {dpwm == 2'(svpwm_pkg::DpwmOff), dpwm == 2'(svpwm_pkg::DpwmMax)};
+    assign dp60_d  = (dpwm == 2'(svpwm_pkg::Dpwm60));
+    assign {is_err, is_xy, is_th, is_dq, is_ab, is_vf} = mdec_q;
 
     always_comb begin
       unique case (pred)
         3'(svpwm_pkg::PredTh): pred_ok = is_th;
         3'(svpwm_pkg::PredAb): pred_ok = is_ab;
         3'(svpwm_pkg::PredDq): pred_ok = is_dq;
-        3'(svpwm_pkg::PredXy): pred_ok = is_ab || is_dq;
+        3'(svpwm_pkg::PredXy): pred_ok = is_xy;
         default:    pred_ok = 1'b1;
       endcase
     end
@@ -166,7 +174,7 @@ module svpwm_calc #(
     logic [svpwm_pkg::CalcFlags-1:0] flags_d, flags_q;
     logic [2:0]           sec_d, sec_q;
     logic [5:0]           sel_d, sel;
-    logic                 midneg;
+    logic                 midneg_d, midneg;
     logic [31:0]          c;
 
     // Table 4-3 codes of the sector, registered from it (sel == sector_sel(sec_q of the clock before): the
@@ -176,8 +184,11 @@ module svpwm_calc #(
       .sector_i (sec_q),
       .sel_o    (sel_d)
     );
-    always_ff @(posedge clk_i) sel <= sel_d;
-    assign midneg = (sel[1:0] == 2'd3) || (sel[3:2] == 2'd3) || (sel[5:4] == 2'd3);
+    assign midneg_d = (sel_d[1:0] == 2'd3) || (sel_d[3:2] == 2'd3) || (sel_d[5:4] == 2'd3);
+    always_ff @(posedge clk_i) begin
+      sel    <= sel_d;
+      midneg <= midneg_d;
+    end
 
     // the condition vector, and below the flags and the compare values, bit by bit in continuous
     // assignments: an always_comb that sets a default and then overwrites single bits of the same vector
@@ -185,7 +196,7 @@ module svpwm_calc #(
     for (genvar k = 0; k < 32; k++) begin : gen_c
       if (k < svpwm_pkg::CalcFlags)        begin : gen_flag assign c[k] = flags_q[k]; end
       else if (k == svpwm_pkg::CVf)        begin : gen_vf   assign c[k] = is_vf; end
-      else if (k == svpwm_pkg::CXy)        begin : gen_xy   assign c[k] = is_ab || is_dq; end
+      else if (k == svpwm_pkg::CXy)        begin : gen_xy   assign c[k] = is_xy; end
       else if (k == svpwm_pkg::CErr)       begin : gen_err  assign c[k] = is_err; end
       else if (k == svpwm_pkg::CMidsgn)    begin : gen_mid  assign c[k] = midneg ^ flags_q[svpwm_pkg::FFirst]; end
       else if (k == svpwm_pkg::CDq)        begin : gen_dq   assign c[k] = is_dq; end
@@ -205,7 +216,7 @@ module svpwm_calc #(
     assign sw = edge_s[0] ? 3'd0 : edge_s[1] ? 3'd1 : edge_s[2] ? 3'd2 :
                 edge_s[3] ? 3'd3 : edge_s[4] ? 3'd4 : edge_s[5] ? 3'd5 : 3'd0;
     always_comb begin
-      unique case (sw)
+      unique case (sw_q)
         3'd0, 3'd3: begin sw_mod3 = 3'd0; sw1_mod3 = 3'd1; end
         3'd1, 3'd4: begin sw_mod3 = 3'd1; sw1_mod3 = 3'd2; end
         default:    begin sw_mod3 = 3'd2; sw1_mod3 = 3'd0; end
@@ -221,37 +232,50 @@ module svpwm_calc #(
     end
 
     // ---- the adder -----------------------------------------------------------------------------------
-    logic [W-1:0] acc_d, acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
-    logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign;
+    // sign_q: the sign of every step's sum, registered (in the carry chain's top cell); the flags and Q
+    // take it one clock after their step, and a BinvNsign operand (the division) inverts by it directly.
+    // ACC's top bit is sign_q, or top_q after a held step (a compare: the sum's sign is not ACC's)
+    logic [W-1:0] acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
+    logic [W-2:0] acc_lo_d, acc_lo_q;
+    logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign, sign_q;
+    logic         held_d, held_q, top_d, top_q, nsign_d, nsign_q, binv_e, cin_e;
 
-    assign a_val = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
-    assign b_val = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
-    assign sum   = a_val + b_val + W'(cin_q);
-    assign sign  = sum[W-1];
-    assign acc_d = (busy && !hold) ? sum : acc_q;
+    assign acc_q    = {held_q ? top_q : sign_q, acc_lo_q};
+    assign nsign_d  = (binv_sel_q == 2'(svpwm_pkg::BinvNsign));
+    assign binv_e   = nsign_q ? !sign_q : binv_q;
+    assign cin_e    = nsign_q ? !sign_q : cin_q;
+    assign a_val    = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
+    assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_e}};
+    assign sum      = a_val + b_val + W'(cin_e);
+    assign sign     = sum[W-1];
+    assign held_d   = !(busy && !hold);
+    assign acc_lo_d = held_d ? acc_lo_q : sum[W-2:0];
+    assign top_d    = held_d ? acc_q[W-1] : top_q;
 
     // ---- operand RAM ---------------------------------------------------------------------------------
     // the condition bits of the step after next, from the registered condition selection and the flags,
     // into registers (zero in the start clock: the selection is then the idle word's or stale)
-    logic [4:0] raddr;
-    logic [2:0] rbits, rbits_d, rbits_q;
-    logic       cbit, cbit_d, cbit_q;
-    assign cbit = c[cond_q];
+    // (c[cond] as an AND-OR over the registered one-hot cond; RC_C's bit ORed in only at the address)
+    logic [4:0]  raddr;
+    logic [2:0]  rbits, rbits_d, rbits_q;
+    logic        cbit, cbit_d, cbit_q, rcc_d, rcc_q;
+    logic [31:0] cond_oh_d, cond_oh_q;
+    assign cond_oh_d = 32'd1 << cond_d;
+    assign cbit      = |(cond_oh_q & c);
     always_comb begin
       unique case (rc_q)
-        3'(svpwm_pkg::RcC):     rbits = {2'd0, cbit};
         3'(svpwm_pkg::RcSw):    rbits = sw_mod3;
         3'(svpwm_pkg::RcSw1):   rbits = sw1_mod3;
         3'(svpwm_pkg::RcSnap):  rbits = snap;
-        3'(svpwm_pkg::RcDpwm):  rbits = {1'b0, dpwm == 2'(svpwm_pkg::DpwmOff),
-                              (dpwm == 2'(svpwm_pkg::DpwmMax)) || ((dpwm == 2'(svpwm_pkg::Dpwm60)) && !flags_q[svpwm_pkg::FDp60])};
-        3'(svpwm_pkg::RcMerge): rbits = {1'b0, is_err, is_ab || is_dq};
+        3'(svpwm_pkg::RcDpwm):  rbits = {1'b0, dpdec_q[1], dpdec_q[0] || (dp60_q && !flags_q[svpwm_pkg::FDp60])};
+        3'(svpwm_pkg::RcMerge): rbits = {1'b0, is_err, is_xy};
         default:     rbits = 3'd0;
       endcase
     end
     assign rbits_d = busy ? rbits : 3'd0;
     assign cbit_d  = busy && cbit;
-    assign raddr   = opnd_q | {2'd0, rbits_q};
+    assign rcc_d   = busy && (rc_q == 3'(svpwm_pkg::RcC));
+    assign raddr   = opnd_q | {2'd0, rbits_q[2:1], rbits_q[0] | (rcc_q && cbit_q)};
 
     svpwm_calc_ram #(.Width(W)) u_ram (
       .clk_i   (clk_i),
@@ -370,12 +394,12 @@ module svpwm_calc #(
       unique case (binv_sel_q)
         2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
         2'(svpwm_pkg::BinvC):     binv_d = cbit_q;
-        2'(svpwm_pkg::BinvNsign): binv_d = !sign;
+        2'(svpwm_pkg::BinvNsign): binv_d = 1'b0;       // (binv_e: !sign_q, nsign_q)
         default:       binv_d = 1'b0;
       endcase
       unique case (cin_sel_q)
         2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
-        2'(svpwm_pkg::CinBinv): cin_d = binv_d;
+        2'(svpwm_pkg::CinBinv): cin_d = binv_d;        // (BinvNsign: cin_e, as binv_e)
         2'(svpwm_pkg::CinRnd):  cin_d = ((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
         default:     cin_d = 1'b0;
       endcase
@@ -385,10 +409,13 @@ module svpwm_calc #(
     logic [3*CntWidth-1:0] cmp_d, cmp_q;
     logic                  done_q;
 
+    // a flag set / Q shift acts one clock after its step, with sign_q (the builder waits for it)
+    logic       fset_q, qsh_q;
+    logic [4:0] fidx_q;
     for (genvar k = 0; k < svpwm_pkg::CalcFlags; k++) begin : gen_flags
-      assign flags_d[k] = (fset && dst == 5'(k)) ? sign : flags_q[k];
+      assign flags_d[k] = (fset_q && fidx_q == 5'(k)) ? sign_q : flags_q[k];
     end
-    assign q_d = qsh ? {q_q[14:0], !sign} : q_q;
+    assign q_d = qsh_q ? {q_q[14:0], !sign_q} : q_q;
 
     // DQ: the sector of X, Y, Z counts from theta's sector: (sw + sector) mod 6
     logic [3:0] sec_sum;
@@ -426,7 +453,19 @@ module svpwm_calc #(
       if (!rst_ni) begin
         pc_q    <= '0;
         busy_q  <= 1'b0;
-        acc_q   <= '0;
+        acc_lo_q <= '0;
+        sign_q   <= 1'b0;
+        held_q   <= 1'b1;
+        top_q    <= 1'b0;
+        nsign_q  <= 1'b0;
+        fset_q   <= 1'b0;
+        fidx_q   <= '0;
+        qsh_q    <= 1'b0;
+        cond_oh_q <= '0;
+        rcc_q    <= 1'b0;
+        mdec_q   <= '0;
+        dpdec_q  <= '0;
+        dp60_q   <= 1'b0;
         aux_q   <= '0;
         b_ram_q <= 1'b0;
         src_q      <= '0;
@@ -434,7 +473,6 @@ module svpwm_calc #(
         binv_sel_q <= '0;
         cin_sel_q  <= '0;
         rc_q       <= '0;
-        cond_q     <= '0;
         rbits_q    <= '0;
         cbit_q     <= 1'b0;
         in_q       <= '0;
@@ -454,7 +492,19 @@ module svpwm_calc #(
       end else begin
         pc_q    <= pc_d;
         busy_q  <= busy_d;
-        acc_q   <= acc_d;
+        acc_lo_q <= acc_lo_d;
+        sign_q   <= sign;
+        held_q   <= held_d;
+        top_q    <= top_d;
+        nsign_q  <= nsign_d;
+        fset_q   <= fset;
+        fidx_q   <= dst;
+        qsh_q    <= qsh;
+        cond_oh_q <= cond_oh_d;
+        rcc_q    <= rcc_d;
+        mdec_q   <= mdec_d;
+        dpdec_q  <= dpdec_d;
+        dp60_q   <= dp60_d;
         aux_q   <= aux_d;
         b_ram_q <= (src_q == 3'(svpwm_pkg::AsNone));
         src_q      <= src_d;
@@ -462,7 +512,6 @@ module svpwm_calc #(
         binv_sel_q <= binv_sel_d;
         cin_sel_q  <= cin_sel_d;
         rc_q       <= rc_d;
-        cond_q     <= cond_d;
         rbits_q    <= rbits_d;
         cbit_q     <= cbit_d;
         in_q       <= in_d;

@@ -174,6 +174,7 @@ class Program:
                 cs = self.steps[k + 3]
                 rc, binv = cs.get("rc", RC_NONE), cs.get("binv", BINV_NO)
                 assert not (rc == RC_C and binv == BINV_C), f"step {k + 3}: two conditions"
+                assert binv != BINV_NSIGN or cs.get("cin") == CIN_BINV, f"step {k + 3}: BINV_NSIGN needs CIN_BINV"
                 cond = cs.get("ci", 0) if rc == RC_C else cs.get("bci", 0) if binv == BINV_C else 0
                 assert cs.get("ci", 0) in (0, cond) and cs.get("bci", 0) in (0, cond), k + 3
                 w.update(rc=rc, cond=cond)
@@ -316,8 +317,8 @@ class Builder:
         asrc = b.get("asrc")
         if asrc in (AS_SHR9, AS_SHR1):                    # AUX takes ACC in the step before B
             need = max(need, self.acc_t + 2)
-        if asrc == AS_Q:
-            need = max(need, self.q_t + 2)
+        if asrc == AS_Q:                                  # (the Q shift takes the sign one clock later)
+            need = max(need, self.q_t + 3)
         if asrc == AS_ANG:
             need = max(need, self.ang_t + 2)
         if b.get("ra") is not None and "ra" in b:
@@ -326,15 +327,15 @@ class Builder:
                 if a in self.wt:
                     need = max(need, self.wt[a] + 2)
             fl = _RC_FLAGS.get(rc, ()) + (self._flags_of(b.get("ci", 0)) if rc == RC_C else ())
-            for f in fl:
+            for f in fl:                                  # flags: set one clock after their step
                 if f in self.ft:
-                    need = max(need, self.ft[f] + 3)
+                    need = max(need, self.ft[f] + (5 if rc in (RC_SW, RC_SW1) else 4))   # (sw_q: one more)
             if rc == RC_C and b.get("ci") == C_MIDSGN:
                 need = max(need, self.sec_t + 4)
         if b.get("binv") == BINV_C:
             for f in self._flags_of(b["bci"]):
                 if f in self.ft:
-                    need = max(need, self.ft[f] + 3)
+                    need = max(need, self.ft[f] + 4)
             if b["bci"] == C_MIDSGN:                      # the Table 4-3 codes of the sector (sel) are
                 need = max(need, self.sec_t + 4)          # registered from it: c[] one step later still
         return need
@@ -385,7 +386,7 @@ class Builder:
             self.ang_t = t
         if s.get("sec") == SEC_XYZ:                       # the sector of the signs comes from a register
             sgn = [self.ft.get(f, -9) for f in _RC_FLAGS[RC_SW]]
-            assert t >= max(sgn) + 2, f"step {t}: sector from flags set in step {max(sgn)}"
+            assert t >= max(sgn) + 3, f"step {t}: sector from flags set in step {max(sgn)}"
         if s.get("out"):
             assert t >= self.sec_t + 2, f"step {t}: out with the sector of step {self.sec_t}"
         if s.get("sec"):
@@ -534,6 +535,7 @@ class Machine:
             cx = {n: junk.getrandbits(w) for n, w in COND_FIELDS}
             rbits_q, cbit_q, in_q = junk.getrandbits(3), junk.getrandbits(1), junk.getrandbits(16)
             sec_p, sw_q, ang_p = junk.randrange(6), junk.randrange(6), junk.getrandbits(16)
+        pend_f, pend_q, sign_q = None, 0, 0     # the flag set / Q shift of the clock before, its sign
         ser_left = 0
         ser_prod = None
         cmp = [0, 0, 0] if junk is None else [junk.getrandbits(self.cw) for _ in range(3)]
@@ -560,7 +562,7 @@ class Machine:
             pred = {PRED_ALL: True, PRED_TH: is_th, PRED_AB: is_ab, PRED_DQ: is_dq, PRED_XY: is_ab or is_dq}[w["pred"]]
             # ---- condition bits of the step after next (cx: registered from the word before) ----
             sw = sector_of_flags(flags)
-            bits = {RC_NONE: 0, RC_C: c[cx["cond"]], RC_SW: sw % 3, RC_SW1: (sw + 1) % 3,
+            bits = {RC_NONE: 0, RC_C: c[cx["cond"]], RC_SW: sw_q % 3, RC_SW1: (sw_q + 1) % 3,
                     RC_SNAP: snap_bits(flags),
                     RC_DPWM: (int(dpwm == fixed.DPWM_OFF) << 1) | int(dpwm == fixed.DPWM_MAX or
                                                                       (dpwm == fixed.DPWM_60 and not flags[F_DP60])),
@@ -594,10 +596,13 @@ class Machine:
                 if w["we"] and pred:
                     assert w["wa"] not in ZERO_WORDS
                     ram[w["wa"]] = acc
-                if w["fset"]:
-                    flags[w["fidx"]] = sign
-                if w["qsh"]:
-                    q = ((q << 1) | (1 - sign)) & 0xFFFF
+                # a flag set / Q shift takes the sign registered in its step one clock later
+                if pend_f is not None:
+                    flags[pend_f] = sign_q
+                if pend_q:
+                    q = ((q << 1) | (1 - sign_q)) & 0xFFFF
+                pend_f = w["fidx"] if w["fset"] else None
+                pend_q = w["qsh"]
                 n_ma, n_mb = ma, mb
                 if w["mla"]:
                     n_ma = sat16(acc if w["mas"] else b_val)
@@ -642,7 +647,7 @@ class Machine:
             acc, ram_q, aux_q, binv_q, cin_q = n_acc, n_ram_q, n_aux, n_binv, n_cin
             nx = {n: w[n] for n, _ in NEXT_FIELDS}
             cx = {n: w[n] for n, _ in COND_FIELDS}
-            rbits_q, cbit_q, in_q, sw_q = n_rbits, n_cbit, n_in, sw
+            rbits_q, cbit_q, in_q, sw_q, sign_q = n_rbits, n_cbit, n_in, sw, sign
         assert out is not None, "the program never signalled done"
         return out
 

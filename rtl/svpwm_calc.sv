@@ -5,10 +5,16 @@
 // A microcoded accumulator machine (model/svpwm_model/calc_prog.py generates its program and models it clock
 // by clock; docs/design.md): one adder ACC <- A + B + cin, a 32-word operand RAM (svpwm_calc_ram), the sine
 // ROM, one 16 x 16 multiplier and a microcode ROM (svpwm_ucode) addressed by a step counter. Per clock:
-//   A = aen ? (ash ? ACC << 1 : ACC) : 0;  B = (RAM word or AUX, chosen by the word before) ^ {binv}
-//   ACC <- A + B + cin (or held: a compare); RAM[dst] <- ACC; flag[dst] <- sign; Q <- {Q, !sign};
-//   MA / MB <- sat16(B, ACC or the angle fraction); P <- MA * MB (registered inputs and output: the
-//   UP5K's SB_MAC16 with its registers) or, with Dsp = 0, a 16-clock serial shift-add unit.
+//   A = aen ? (ash ? ACC << 1 : ACC) : 0;  B = (RAM word or AUX) ^ {binv}
+//   ACC <- A + B + cin (or held: a compare); RAM[dst] <- ACC; flag[dst] <- sign, Q <- {Q, !sign} (both
+//   one clock later, from the registered sign); MA / MB <- sat16(B, ACC or the angle fraction);
+//   P <- MA * MB (registered inputs and output: the UP5K's SB_MAC16 with its registers) or, with Dsp = 0,
+//   a 16-clock serial shift-add unit.
+// Timing (every select from a register): word k holds the own fields of step k, the operand selection of
+// step k + 2 (registered in step k) and the condition selection of step k + 3 (registered in step k; its
+// condition bits -- c[cond], sector / snap / DPWM read-address bits -- are registered in step k + 1). The
+// builder (calc_prog.Builder) waits for what that delays: a flag is a condition three steps after its
+// step + 1, a ROM word four steps after its angle, an out step two steps after the sector.
 // TRANSITIONAL: with Compact = 1 this module still instantiates the compact core's own serial datapath
 // (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency): the engine's compact program (FREQ only,
 // 216 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
@@ -233,20 +239,18 @@ module svpwm_calc #(
 
     // ---- the adder -----------------------------------------------------------------------------------
     // sign_q: the sign of every step's sum, registered (in the carry chain's top cell); the flags and Q
-    // take it one clock after their step, and a BinvNsign operand (the division) inverts by it directly.
-    // ACC's top bit is sign_q, or top_q after a held step (a compare: the sum's sign is not ACC's)
+    // take it one clock after their step, a BinvNsign operand (the division) is inverted by it two steps
+    // after its step. ACC's top bit is sign_q, or top_q after a held step (a compare: the sum's sign is
+    // not ACC's)
     logic [W-1:0] acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
     logic [W-2:0] acc_lo_d, acc_lo_q;
     logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign, sign_q;
-    logic         held_d, held_q, top_d, top_q, nsign_d, nsign_q, binv_e, cin_e;
+    logic         held_d, held_q, top_d, top_q;
 
     assign acc_q    = {held_q ? top_q : sign_q, acc_lo_q};
-    assign nsign_d  = (binv_sel_q == 2'(svpwm_pkg::BinvNsign));
-    assign binv_e   = nsign_q ? !sign_q : binv_q;
-    assign cin_e    = nsign_q ? !sign_q : cin_q;
     assign a_val    = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
-    assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_e}};
-    assign sum      = a_val + b_val + W'(cin_e);
+    assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
+    assign sum      = a_val + b_val + W'(cin_q);
     assign sign     = sum[W-1];
     assign held_d   = !(busy && !hold);
     assign acc_lo_d = held_d ? acc_lo_q : sum[W-2:0];
@@ -295,15 +299,14 @@ module svpwm_calc #(
     assign ri1_d = {1'b0, ang_i} + 9'd1;
     assign rn_d  = 9'd256 - {1'b0, ang_i};
     assign rn1_d = 9'd255 - {1'b0, ang_i};
-    always_comb begin
-      unique case (rsel)
-        3'(svpwm_pkg::RomI):  rom_addr = ri_q;
-        3'(svpwm_pkg::RomI1): rom_addr = ri1_q;
-        3'(svpwm_pkg::RomN):  rom_addr = rn_q;
-        3'(svpwm_pkg::RomN1): rom_addr = rn1_q;
-        default:   rom_addr = 9'd0;
-      endcase
-    end
+    // (an AND-OR of the misc code's ROM selections, not gated by busy: the word read while idle, word 0,
+    // has no misc action; 0 otherwise, as rsel)
+    logic [3:0] rs;
+    logic [3:0] misc_code;
+    assign misc_code = word[svpwm_pkg::UcMisc +: svpwm_pkg::UcMiscW];
+    assign rs = {misc_code == 4'(svpwm_pkg::MiscRomN1), misc_code == 4'(svpwm_pkg::MiscRomN),
+                 misc_code == 4'(svpwm_pkg::MiscRomI1), misc_code == 4'(svpwm_pkg::MiscRomI)};
+    assign rom_addr = ({9{rs[0]}} & ri_q) | ({9{rs[1]}} & ri1_q) | ({9{rs[2]}} & rn_q) | ({9{rs[3]}} & rn1_q);
 
     sine_rom u_rom (
       .clk_i  (clk_i),
@@ -394,12 +397,12 @@ module svpwm_calc #(
       unique case (binv_sel_q)
         2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
         2'(svpwm_pkg::BinvC):     binv_d = cbit_q;
-        2'(svpwm_pkg::BinvNsign): binv_d = 1'b0;       // (binv_e: !sign_q, nsign_q)
+        2'(svpwm_pkg::BinvNsign): binv_d = !sign_q;
         default:       binv_d = 1'b0;
       endcase
       unique case (cin_sel_q)
         2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
-        2'(svpwm_pkg::CinBinv): cin_d = binv_d;        // (BinvNsign: cin_e, as binv_e)
+        2'(svpwm_pkg::CinBinv): cin_d = binv_d;
         2'(svpwm_pkg::CinRnd):  cin_d = ((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
         default:     cin_d = 1'b0;
       endcase
@@ -457,7 +460,6 @@ module svpwm_calc #(
         sign_q   <= 1'b0;
         held_q   <= 1'b1;
         top_q    <= 1'b0;
-        nsign_q  <= 1'b0;
         fset_q   <= 1'b0;
         fidx_q   <= '0;
         qsh_q    <= 1'b0;
@@ -496,7 +498,6 @@ module svpwm_calc #(
         sign_q   <= sign;
         held_q   <= held_d;
         top_q    <= top_d;
-        nsign_q  <= nsign_d;
         fset_q   <= fset;
         fidx_q   <= dst;
         qsh_q    <= qsh;
@@ -536,10 +537,11 @@ module svpwm_calc #(
     assign sector_o = sec_q;
     assign cmp_o    = cmp_q;
     assign sat_o    = !flags_q[svpwm_pkg::FSatn];
-    assign err_o    = is_err;
+    assign err_o    = (mode > 3'(svpwm_pkg::ModeDq));   // (from mode_i itself, as the other results: not the
+                                                        // registered decode, which lags mode_i by a clock)
 
     logic unused;
-    assign unused = ^{p_sh};
+    assign unused = ^{p_sh, rsel};          // (rsel: the ROM address decodes the misc code itself)
   end
 
 endmodule

@@ -311,6 +311,8 @@ class Builder:
 
     def _ready(self, b: dict) -> int:
         need = 1
+        if b.get("binv") == BINV_NSIGN:                   # the sign of the step two before (registered)
+            assert self.p.steps[self.t - 1].get("acc") == ACC_HOLD and self.acc_t == self.t - 2, self.t
         if "rom" in b:
             need = max(need, 3, self.ang_t + 4)           # the read (two steps before) sees the new ANG
             #                                               (the ROM addresses are registered from ANG)
@@ -583,7 +585,7 @@ class Machine:
             n_aux = {AS_NONE: 0, AS_ROM: rom_q, AS_PROD: ((pv or 0) >> sh),
                      AS_IN: in_q, AS_SHR9: _sx(acc, W) >> 9, AS_SHR1: _sx(acc, W) >> 1, AS_Q: q,
                      AS_ANG: ang}.get(asrc, 0) & mask
-            n_binv = {BINV_NO: 0, BINV_YES: 1, BINV_C: cbit_q, BINV_NSIGN: 1 - sign}[nx["binv"]]
+            n_binv = {BINV_NO: 0, BINV_YES: 1, BINV_C: cbit_q, BINV_NSIGN: 1 - sign_q}[nx["binv"]]
             rbit = (((pv or 0) >> (sh - 1)) & 1) if (asrc == AS_PROD and sh) else 0
             n_cin = {CIN_0: 0, CIN_1: 1, CIN_BINV: n_binv, CIN_RND: rbit ^ n_binv}[nx["cin"]]
             # the input the word selects (the operand of the step after next), registered
@@ -815,9 +817,11 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     g.add(ram(R_MIN + 1, inv=True))                       # max = s - min
     g.write(R_MAX + 1)
     g.load(ram(R_MIN + 1))                                # remainder = min (< s)
-    # 16 non-restoring steps: rem <- 2 rem -+ s by the sign of rem, quotient bit = new rem >= 0
+    # 16 non-restoring steps: rem <- 2 rem -+ s by the sign of rem, quotient bit = new rem >= 0 (BINV_NSIGN
+    # inverts by the registered sign of the step two before: a hold between the steps)
     g.add2(ram(R_S, inv=True), qsh=1)
     for _ in range(15):
+        g.hold()
         g.add2(ram(R_S, binv=BINV_NSIGN, cin=CIN_BINV), qsh=1)
     g.load(aux(AS_Q))                                     # q
     g.write(R_MIN)

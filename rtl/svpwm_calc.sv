@@ -10,14 +10,16 @@
 //   one clock later, from the registered sign); MA / MB <- sat16(B, ACC or the angle fraction);
 //   P <- MA * MB (registered inputs and output: the UP5K's SB_MAC16 with its registers) or, with Dsp = 0,
 //   a 16-clock serial shift-add unit.
-// Timing (every select from a register): word k holds the own fields of step k, the operand selection of
-// step k + 2 (registered in step k) and the condition selection of step k + 3 (registered in step k; its
-// condition bits -- c[cond], sector / snap / DPWM read-address bits -- are registered in step k + 1). The
-// builder (calc_prog.Builder) waits for what that delays: a flag is a condition three steps after its
-// step + 1, a ROM word four steps after its angle, an out step two steps after the sector.
+// Timing (every select from a register): word k holds the own fields of step k, the A selection (aen,
+// ash) of step k + 1, the operand selection of step k + 2 (both registered in step k) and the condition
+// selection of step k + 3 (registered in step k; its condition bits -- c[cond], sector / snap / DPWM
+// read-address bits -- are registered in step k + 1). The sum's sign is registered (sign_q). The
+// builder (calc_prog.Builder) waits for what that delays: a flag is a condition four steps after its
+// step, a ROM word four steps after its angle, an out step two steps after the sector; the division's
+// BinvNsign uses the sign of the step two before (a hold between its steps); step 1 is empty.
 // TRANSITIONAL: with Compact = 1 this module still instantiates the compact core's own serial datapath
 // (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency): the engine's compact program (FREQ only,
-// 216 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
+// 236 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
 // Parameters: Compact - 1: FREQ mode only (mode_i, theta_i, v1_i, v2_i, vf_*, dpwm_i, fabs_i
 //             ignored); Dsp - 1: the registered multiplier, 0: the serial unit (default: the core's choice,
 //             svpwm_pkg::core_dsp); CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1
@@ -112,15 +114,18 @@ module svpwm_calc #(
     // the core cannot start then). The own fields below act only while busy.
 
     // ---- decode: own fields (acting in this step, only while busy) ------------------------------------
-    logic       aen, ash, hold, we, fset, qsh, ald, mla, mas, mlb, done;
+    logic       aen_q, ash_q, hold, we, fset, qsh, ald, mla, mas, mlb, done;
     logic [4:0] dst;
     logic [2:0] pred, rsel;
     logic [1:0] mbs, sec_op, out_op;
     logic [4:0] mop;
     logic [8:0] misc;
 
-    assign aen  = word[svpwm_pkg::UcAen];       // (A only matters while busy: ACC holds otherwise)
-    assign ash  = word[svpwm_pkg::UcAsh];
+    // aen / ash: the A operand of the next step, registered (A only matters while busy: ACC holds
+    // otherwise)
+    logic aen_d, ash_d;
+    assign aen_d = word[svpwm_pkg::UcAen];
+    assign ash_d = word[svpwm_pkg::UcAsh];
     assign hold = word[svpwm_pkg::UcHold];
     assign dst  = word[svpwm_pkg::UcDst +: svpwm_pkg::UcDstW];
     assign pred = word[svpwm_pkg::UcPred +: svpwm_pkg::UcPredW];
@@ -248,7 +253,7 @@ module svpwm_calc #(
     logic         held_d, held_q, top_d, top_q;
 
     assign acc_q    = {held_q ? top_q : sign_q, acc_lo_q};
-    assign a_val    = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
+    assign a_val    = aen_q ? (ash_q ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
     assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
     assign sum      = a_val + b_val + W'(cin_q);
     assign sign     = sum[W-1];
@@ -457,6 +462,8 @@ module svpwm_calc #(
         pc_q    <= '0;
         busy_q  <= 1'b0;
         acc_lo_q <= '0;
+        aen_q    <= 1'b0;
+        ash_q    <= 1'b0;
         sign_q   <= 1'b0;
         held_q   <= 1'b1;
         top_q    <= 1'b0;
@@ -495,6 +502,8 @@ module svpwm_calc #(
         pc_q    <= pc_d;
         busy_q  <= busy_d;
         acc_lo_q <= acc_lo_d;
+        aen_q    <= aen_d;
+        ash_q    <= ash_d;
         sign_q   <= sign;
         held_q   <= held_d;
         top_q    <= top_d;

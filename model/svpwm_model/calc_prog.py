@@ -47,17 +47,20 @@ SIN60 = fixed.sine_table()[fixed.ROM_SIZE]
 # next step's B operand); the word packs them into 42 bits (three 16-bit block RAMs), sharing bits between
 # fields no step uses together (encode() asserts that):
 OWN_FIELDS = (
-    ("aen", 1), ("ash", 1), ("acc", 1), ("we", 1), ("wa", 5), ("pred", 3), ("fset", 1), ("fidx", 5),
+    ("acc", 1), ("we", 1), ("wa", 5), ("pred", 3), ("fset", 1), ("fidx", 5),
     ("mla", 1), ("mas", 1), ("mlb", 1), ("mbs", 2), ("qsh", 1), ("ald", 1), ("sec", 2), ("rsel", 3),
     ("out", 2), ("done", 1),
 )
+# the A operand of step k + 1 (word k: registered, so that the adder's A input comes from registers)
+A_FIELDS = (("aen", 1), ("ash", 1))
 # the operand selection of step k + 2 (word k)
 NEXT_FIELDS = (("ra", 5), ("asrc", 3), ("isel", 4), ("psh", 2), ("binv", 2), ("cin", 2))
 # the condition selection of step k + 3 (word k): the read-address bits and c[cond] (rc C: ci, binv C: bci)
 COND_FIELDS = (("rc", 3), ("cond", 5))
-LOGICAL = OWN_FIELDS + NEXT_FIELDS + COND_FIELDS
+LOGICAL = OWN_FIELDS + A_FIELDS + NEXT_FIELDS + COND_FIELDS
 # packed word, LSB first:
-#   aen ash hold | wr (0 -, 1 RAM write, 2 flag set) | dst (wa or fidx) | pred | mop | misc | done   (step k)
+#   aen ash                                                                                          (step k + 1)
+#   hold | wr (0 -, 1 RAM write, 2 flag set) | dst (wa or fidx) | pred | mop | misc | done           (step k)
 #   src (asrc: 0 = the RAM word) | opnd (ra, isel or psh) | binv | cin                               (step k + 2)
 #   rc | cond (ci or bci)                                                                            (step k + 3)
 FIELDS = (
@@ -151,8 +154,8 @@ class Program:
         return len(self.steps)
 
     def words(self) -> list[dict]:
-        """Per microcode word k: the own fields of step k, the B selection of step k + 2 and the condition
-        selection of step k + 3 (logical fields)."""
+        """Per microcode word k: the own fields of step k, the A selection of step k + 1, the B selection of
+        step k + 2 and the condition selection of step k + 3 (logical fields)."""
         own_names, next_names = dict(OWN_FIELDS), dict(NEXT_FIELDS)
         n = len(self.steps)
         # step 1 has no operand (it would come from the word before the start: junk after a done or an abort)
@@ -165,6 +168,8 @@ class Program:
         out = []
         for k, st in enumerate(self.steps):
             w = {f: v for f, v in st.items() if f in own_names}
+            if k + 1 < n:
+                w.update({f: v for f, v in self.steps[k + 1].items() if f in dict(A_FIELDS)})
             if k + 2 < n:
                 nx = self.steps[k + 2]
                 if nx.get("asrc", AS_NONE) != AS_NONE:
@@ -524,6 +529,7 @@ class Machine:
             p = ma * mb
         # registers of the operand selection (the word before: NEXT_FIELDS), the condition selection and its
         # bits, the selected input, the sector's sign code and Table 4-3 codes, the ROM address's angle
+        a_q = {n: 0 for n, _ in A_FIELDS}
         nx = {n: 0 for n, _ in NEXT_FIELDS}
         cx = {n: 0 for n, _ in COND_FIELDS}
         rbits_q = cbit_q = 0
@@ -557,7 +563,7 @@ class Machine:
                 # idle word: only its next fields matter
                 a_val, b_val, s = 0, 0, 0
             else:
-                a_val = ((acc << 1) if w["ash"] else acc) & mask if w["aen"] else 0
+                a_val = ((acc << 1) if a_q["ash"] else acc) & mask if a_q["aen"] else 0
                 b_val = ((ram_q | aux_q) ^ (mask if binv_q else 0)) & mask
                 s = (a_val + b_val + cin_q) & mask
             sign = (s >> (W - 1)) & 1
@@ -647,6 +653,7 @@ class Machine:
             if trace is not None:
                 trace.append((k, _sx(acc, W), _sx(n_acc, W), a_val, _sx(b_val, W), cin_q))
             acc, ram_q, aux_q, binv_q, cin_q = n_acc, n_ram_q, n_aux, n_binv, n_cin
+            a_q = {n: w[n] for n, _ in A_FIELDS}
             nx = {n: w[n] for n, _ in NEXT_FIELDS}
             cx = {n: w[n] for n, _ in COND_FIELDS}
             rbits_q, cbit_q, in_q, sw_q, sign_q = n_rbits, n_cbit, n_in, sw, sign

@@ -5,13 +5,21 @@
 // A microcoded accumulator machine (model/svpwm_model/calc_prog.py generates its program and models it clock
 // by clock; docs/design.md): one adder ACC <- A + B + cin, a 32-word operand RAM (svpwm_calc_ram), the sine
 // ROM, one 16 x 16 multiplier and a microcode ROM (svpwm_ucode) addressed by a step counter. Per clock:
-//   A = aen ? (ash ? ACC << 1 : ACC) : 0;  B = (RAM word or AUX, chosen by the word before) ^ {binv}
-//   ACC <- A + B + cin (or held: a compare); RAM[dst] <- ACC; flag[dst] <- sign; Q <- {Q, !sign};
-//   MA / MB <- sat16(B, ACC or the angle fraction); P <- MA * MB (registered inputs and output: the
-//   UP5K's SB_MAC16 with its registers) or, with Dsp = 0, a 16-clock serial shift-add unit.
+//   A = aen ? (ash ? ACC << 1 : ACC) : 0;  B = (RAM word or AUX) ^ {binv}
+//   ACC <- A + B + cin (or held: a compare); RAM[dst] <- ACC; flag[dst] <- sign, Q <- {Q, !sign} (both
+//   one clock later, from the registered sign); MA / MB <- sat16(B, ACC or the angle fraction);
+//   P <- MA * MB (registered inputs and output: the UP5K's SB_MAC16 with its registers) or, with Dsp = 0,
+//   a 16-clock serial shift-add unit.
+// Timing (every select from a register): word k holds the own fields of step k, the A selection (aen,
+// ash) of step k + 1, the operand selection of step k + 2 (both registered in step k) and the condition
+// selection of step k + 3 (registered in step k; its condition bits -- c[cond], sector / snap / DPWM
+// read-address bits -- are registered in step k + 1). The sum's sign is registered (sign_q). The
+// builder (calc_prog.Builder) waits for what that delays: a flag is a condition four steps after its
+// step, a ROM word four steps after its angle, an out step two steps after the sector; the division's
+// BinvNsign uses the sign of the step two before (a hold between its steps); step 1 is empty.
 // TRANSITIONAL: with Compact = 1 this module still instantiates the compact core's own serial datapath
 // (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency): the engine's compact program (FREQ only,
-// 216 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
+// 236 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
 // Parameters: Compact - 1: FREQ mode only (mode_i, theta_i, v1_i, v2_i, vf_*, dpwm_i, fabs_i
 //             ignored); Dsp - 1: the registered multiplier, 0: the serial unit (default: the core's choice,
 //             svpwm_pkg::core_dsp); CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1
@@ -87,7 +95,8 @@ module svpwm_calc #(
     logic [svpwm_pkg::UcBits-1:0] word;
 
     assign busy   = busy_q;                      // == (pc_q != 0), registered
-    assign busy_d = (pc_d != 9'd0);
+    // == (pc_d != 0), written so that start_i / abort_i pass one LUT only
+    assign busy_d = !abort_i && (busy ? (pc_q != 9'(Latency - 1)) : start_i);
     always_comb begin
       pc_d = 9'd0;
       if (abort_i)                        pc_d = 9'd0;
@@ -105,15 +114,18 @@ module svpwm_calc #(
     // the core cannot start then). The own fields below act only while busy.
 
     // ---- decode: own fields (acting in this step, only while busy) ------------------------------------
-    logic       aen, ash, hold, we, fset, qsh, ald, mla, mas, mlb, done;
+    logic       aen_q, ash_q, hold, we, fset, qsh, ald, mla, mas, mlb, done;
     logic [4:0] dst;
     logic [2:0] pred, rsel;
     logic [1:0] mbs, sec_op, out_op;
     logic [4:0] mop;
     logic [8:0] misc;
 
-    assign aen  = word[svpwm_pkg::UcAen];       // (A only matters while busy: ACC holds otherwise)
-    assign ash  = word[svpwm_pkg::UcAsh];
+    // aen / ash: the A operand of the next step, registered (A only matters while busy: ACC holds
+    // otherwise)
+    logic aen_d, ash_d;
+    assign aen_d = word[svpwm_pkg::UcAen];
+    assign ash_d = word[svpwm_pkg::UcAsh];
     assign hold = word[svpwm_pkg::UcHold];
     assign dst  = word[svpwm_pkg::UcDst +: svpwm_pkg::UcDstW];
     assign pred = word[svpwm_pkg::UcPred +: svpwm_pkg::UcPredW];
@@ -125,38 +137,47 @@ module svpwm_calc #(
     assign {qsh, ald, sec_op, rsel, out_op} = busy ? misc : 9'd0;
     assign done = busy && word[svpwm_pkg::UcDone];
 
-    // next fields: the operand of the next step
-    logic [2:0] src;
-    logic [4:0] opnd, cond;
-    logic [2:0] rc;
-    logic [1:0] binv_sel, cin_sel;
+    // next fields: the operand of the step after next (registered here: the operand multiplexers of the
+    // next step select from registers) and the condition selection of the step after that (registered
+    // here; the next step computes its condition bits into rbits_q / cbit_q)
+    logic [2:0] src_d, src_q;
+    logic [4:0] opnd_d, opnd_q, cond_d;
+    logic [2:0] rc_d, rc_q;
+    logic [1:0] binv_sel_d, binv_sel_q, cin_sel_d, cin_sel_q;
 
-    assign src      = word[svpwm_pkg::UcSrc +: svpwm_pkg::UcSrcW];
-    assign opnd     = word[svpwm_pkg::UcOpnd +: svpwm_pkg::UcOpndW];
-    assign rc       = word[svpwm_pkg::UcRc +: svpwm_pkg::UcRcW];
-    assign cond     = word[svpwm_pkg::UcCond +: svpwm_pkg::UcCondW];
-    assign binv_sel = word[svpwm_pkg::UcBinv +: svpwm_pkg::UcBinvW];
-    assign cin_sel  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
+    assign src_d      = word[svpwm_pkg::UcSrc +: svpwm_pkg::UcSrcW];
+    assign opnd_d     = word[svpwm_pkg::UcOpnd +: svpwm_pkg::UcOpndW];
+    assign rc_d       = word[svpwm_pkg::UcRc +: svpwm_pkg::UcRcW];
+    assign cond_d     = word[svpwm_pkg::UcCond +: svpwm_pkg::UcCondW];
+    assign binv_sel_d = word[svpwm_pkg::UcBinv +: svpwm_pkg::UcBinvW];
+    assign cin_sel_d  = word[svpwm_pkg::UcCin +: svpwm_pkg::UcCinW];
 
     // ---- mode and conditions ---------------------------------------------------------------------------
+    // the mode and DPWM decodes are registered (mode_i / dpwm_i hold from start_i on: valid from step 1,
+    // and nothing reads them in the start clock: the own fields and the condition bits are gated by busy)
     logic [2:0] mode;
     logic [1:0] dpwm;
-    logic       is_vf, is_ab, is_dq, is_th, is_err, pred_ok;
+    logic       is_vf, is_ab, is_dq, is_th, is_err, is_xy, pred_ok;
+    logic [5:0] mdec_d, mdec_q;          // {err, xy, th, dq, ab, vf}
+    logic [1:0] dpdec_d, dpdec_q;        // {DPWM off, DPWM max}
+    logic       dp60_d, dp60_q;          // DPWM1 (60 deg)
 
-    assign mode   = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
-    assign dpwm   = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
-    assign is_vf  = (mode == 3'(svpwm_pkg::ModeVf));
-    assign is_ab  = (mode == 3'(svpwm_pkg::ModeAb));
-    assign is_dq  = (mode == 3'(svpwm_pkg::ModeDq));
-    assign is_th  = (mode == 3'(svpwm_pkg::ModePolar)) || is_dq;
-    assign is_err = (mode > 3'(svpwm_pkg::ModeDq));
+    assign mode    = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
+    assign dpwm    = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
+    assign mdec_d  = {mode > 3'(svpwm_pkg::ModeDq),
+                      (mode == 3'(svpwm_pkg::ModeAb)) || (mode == 3'(svpwm_pkg::ModeDq)),
+                      (mode == 3'(svpwm_pkg::ModePolar)) || (mode == 3'(svpwm_pkg::ModeDq)),
+                      mode == 3'(svpwm_pkg::ModeDq), mode == 3'(svpwm_pkg::ModeAb), mode == 3'(svpwm_pkg::ModeVf)};
+    assign dpdec_d = {dpwm == 2'(svpwm_pkg::DpwmOff), dpwm == 2'(svpwm_pkg::DpwmMax)};
+    assign dp60_d  = (dpwm == 2'(svpwm_pkg::Dpwm60));
+    assign {is_err, is_xy, is_th, is_dq, is_ab, is_vf} = mdec_q;
 
     always_comb begin
       unique case (pred)
         3'(svpwm_pkg::PredTh): pred_ok = is_th;
         3'(svpwm_pkg::PredAb): pred_ok = is_ab;
         3'(svpwm_pkg::PredDq): pred_ok = is_dq;
-        3'(svpwm_pkg::PredXy): pred_ok = is_ab || is_dq;
+        3'(svpwm_pkg::PredXy): pred_ok = is_xy;
         default:    pred_ok = 1'b1;
       endcase
     end
@@ -164,17 +185,21 @@ module svpwm_calc #(
     logic [svpwm_pkg::CalcFlags-1:0] flags_d, flags_q;
     logic [2:0]           sec_d, sec_q;
     logic [5:0]           sel_d, sel;
-    logic                 midneg;
+    logic                 midneg_d, midneg;
     logic [31:0]          c;
 
-    // Table 4-3 codes of the sector, registered beside it (sel == sector_sel(sec_q) from the first
-    // clock on: the ROM-like no-reset register loads every clock, also in reset)
+    // Table 4-3 codes of the sector, registered from it (sel == sector_sel(sec_q of the clock before): the
+    // builder places the out steps and the C_MIDSGN reads late enough; the ROM-like no-reset register loads
+    // every clock, also in reset)
     svpwm_sector_sel u_sel (
-      .sector_i (sec_d),
+      .sector_i (sec_q),
       .sel_o    (sel_d)
     );
-    always_ff @(posedge clk_i) sel <= sel_d;
-    assign midneg = (sel[1:0] == 2'd3) || (sel[3:2] == 2'd3) || (sel[5:4] == 2'd3);
+    assign midneg_d = (sel_d[1:0] == 2'd3) || (sel_d[3:2] == 2'd3) || (sel_d[5:4] == 2'd3);
+    always_ff @(posedge clk_i) begin
+      sel    <= sel_d;
+      midneg <= midneg_d;
+    end
 
     // the condition vector, and below the flags and the compare values, bit by bit in continuous
     // assignments: an always_comb that sets a default and then overwrites single bits of the same vector
@@ -182,7 +207,7 @@ module svpwm_calc #(
     for (genvar k = 0; k < 32; k++) begin : gen_c
       if (k < svpwm_pkg::CalcFlags)        begin : gen_flag assign c[k] = flags_q[k]; end
       else if (k == svpwm_pkg::CVf)        begin : gen_vf   assign c[k] = is_vf; end
-      else if (k == svpwm_pkg::CXy)        begin : gen_xy   assign c[k] = is_ab || is_dq; end
+      else if (k == svpwm_pkg::CXy)        begin : gen_xy   assign c[k] = is_xy; end
       else if (k == svpwm_pkg::CErr)       begin : gen_err  assign c[k] = is_err; end
       else if (k == svpwm_pkg::CMidsgn)    begin : gen_mid  assign c[k] = midneg ^ flags_q[svpwm_pkg::FFirst]; end
       else if (k == svpwm_pkg::CDq)        begin : gen_dq   assign c[k] = is_dq; end
@@ -192,9 +217,9 @@ module svpwm_calc #(
     end
 
     // sector of the X, Y, Z signs (fixed.xyz_sector): q = (X, Z, -Y, -X, -Z, Y), the first s with
-    // q_s >= 0 > q_s+1 (none: the zero vector, sector 0)
+    // q_s >= 0 > q_s+1 (none: the zero vector, sector 0); sw_q: registered (the sector load reads it)
     logic [5:0] neg;
-    logic [2:0] sw, sw_mod3, sw1_mod3;
+    logic [2:0] sw, sw_q, sw_mod3, sw1_mod3;
     assign neg = {flags_q[svpwm_pkg::FNy], flags_q[svpwm_pkg::FPz], flags_q[svpwm_pkg::FPx], flags_q[svpwm_pkg::FPy], flags_q[svpwm_pkg::FNz], flags_q[svpwm_pkg::FNx]};
     // (a priority chain, not a for loop in an always_comb: that one hung Icarus 11 in a zero-time loop)
     logic [5:0] edge_s;                   // edge_s[s]: q_s >= 0 > q_s+1
@@ -202,7 +227,7 @@ module svpwm_calc #(
     assign sw = edge_s[0] ? 3'd0 : edge_s[1] ? 3'd1 : edge_s[2] ? 3'd2 :
                 edge_s[3] ? 3'd3 : edge_s[4] ? 3'd4 : edge_s[5] ? 3'd5 : 3'd0;
     always_comb begin
-      unique case (sw)
+      unique case (sw_q)
         3'd0, 3'd3: begin sw_mod3 = 3'd0; sw1_mod3 = 3'd1; end
         3'd1, 3'd4: begin sw_mod3 = 3'd1; sw1_mod3 = 3'd2; end
         default:    begin sw_mod3 = 3'd2; sw1_mod3 = 3'd0; end
@@ -218,30 +243,48 @@ module svpwm_calc #(
     end
 
     // ---- the adder -----------------------------------------------------------------------------------
-    logic [W-1:0] acc_d, acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
-    logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign;
+    // sign_q: the sign of every step's sum, registered (in the carry chain's top cell); the flags and Q
+    // take it one clock after their step, a BinvNsign operand (the division) is inverted by it two steps
+    // after its step. ACC's top bit is sign_q, or top_q after a held step (a compare: the sum's sign is
+    // not ACC's)
+    logic [W-1:0] acc_q, ram_q, aux_d, aux_q, a_val, b_val, sum;
+    logic [W-2:0] acc_lo_d, acc_lo_q;
+    logic         b_ram_q, binv_d, binv_q, cin_d, cin_q, sign, sign_q;
+    logic         held_d, held_q, top_d, top_q;
 
-    assign a_val = aen ? (ash ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
-    assign b_val = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
-    assign sum   = a_val + b_val + W'(cin_q);
-    assign sign  = sum[W-1];
-    assign acc_d = (busy && !hold) ? sum : acc_q;
+    assign acc_q    = {held_q ? top_q : sign_q, acc_lo_q};
+    assign a_val    = aen_q ? (ash_q ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
+    assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
+    assign sum      = a_val + b_val + W'(cin_q);
+    assign sign     = sum[W-1];
+    assign held_d   = !(busy && !hold);
+    assign acc_lo_d = held_d ? acc_lo_q : sum[W-2:0];
+    assign top_d    = held_d ? acc_q[W-1] : top_q;
 
     // ---- operand RAM ---------------------------------------------------------------------------------
-    logic [4:0] raddr, rbits;
+    // the condition bits of the step after next, from the registered condition selection and the flags,
+    // into registers (zero in the start clock: the selection is then the idle word's or stale)
+    // (c[cond] as an AND-OR over the registered one-hot cond; RC_C's bit ORed in only at the address)
+    logic [4:0]  raddr;
+    logic [2:0]  rbits, rbits_d, rbits_q;
+    logic        cbit, cbit_d, cbit_q, rcc_d, rcc_q;
+    logic [31:0] cond_oh_d, cond_oh_q;
+    assign cond_oh_d = 32'd1 << cond_d;
+    assign cbit      = |(cond_oh_q & c);
     always_comb begin
-      unique case (rc)
-        3'(svpwm_pkg::RcC):     rbits = {4'd0, c[cond]};
-        3'(svpwm_pkg::RcSw):    rbits = {2'd0, sw_mod3};
-        3'(svpwm_pkg::RcSw1):   rbits = {2'd0, sw1_mod3};
-        3'(svpwm_pkg::RcSnap):  rbits = {2'd0, snap};
-        3'(svpwm_pkg::RcDpwm):  rbits = {3'd0, dpwm == 2'(svpwm_pkg::DpwmOff),
-                              (dpwm == 2'(svpwm_pkg::DpwmMax)) || ((dpwm == 2'(svpwm_pkg::Dpwm60)) && !flags_q[svpwm_pkg::FDp60])};
-        3'(svpwm_pkg::RcMerge): rbits = {3'd0, is_err, is_ab || is_dq};
-        default:     rbits = 5'd0;
+      unique case (rc_q)
+        3'(svpwm_pkg::RcSw):    rbits = sw_mod3;
+        3'(svpwm_pkg::RcSw1):   rbits = sw1_mod3;
+        3'(svpwm_pkg::RcSnap):  rbits = snap;
+        3'(svpwm_pkg::RcDpwm):  rbits = {1'b0, dpdec_q[1], dpdec_q[0] || (dp60_q && !flags_q[svpwm_pkg::FDp60])};
+        3'(svpwm_pkg::RcMerge): rbits = {1'b0, is_err, is_xy};
+        default:     rbits = 3'd0;
       endcase
     end
-    assign raddr = opnd | rbits;
+    assign rbits_d = busy ? rbits : 3'd0;
+    assign cbit_d  = busy && cbit;
+    assign rcc_d   = busy && (rc_q == 3'(svpwm_pkg::RcC));
+    assign raddr   = opnd_q | {2'd0, rbits_q[2:1], rbits_q[0] | (rcc_q && cbit_q)};
 
     svpwm_calc_ram #(.Width(W)) u_ram (
       .clk_i   (clk_i),
@@ -252,20 +295,23 @@ module svpwm_calc #(
       .rdata_o (ram_q)
     );
 
-    // ---- sine ROM: address from ANG[15:8] = i ---------------------------------------------------------
+    // ---- sine ROM: address from ANG[15:8] = i of the clock before (the four addresses registered) -------
     logic [15:0] ang_d, ang_q, rom_q;
-    logic [8:0]  rom_addr;
+    logic [8:0]  rom_addr, ri_d, ri_q, ri1_d, ri1_q, rn_d, rn_q, rn1_d, rn1_q;
     logic [7:0]  ang_i;
     assign ang_i = ang_q[15:8];
-    always_comb begin
-      unique case (rsel)
-        3'(svpwm_pkg::RomI):  rom_addr = {1'b0, ang_i};
-        3'(svpwm_pkg::RomI1): rom_addr = {1'b0, ang_i} + 9'd1;
-        3'(svpwm_pkg::RomN):  rom_addr = 9'd256 - {1'b0, ang_i};
-        3'(svpwm_pkg::RomN1): rom_addr = 9'd255 - {1'b0, ang_i};
-        default:   rom_addr = 9'd0;
-      endcase
-    end
+    assign ri_d  = {1'b0, ang_i};
+    assign ri1_d = {1'b0, ang_i} + 9'd1;
+    assign rn_d  = 9'd256 - {1'b0, ang_i};
+    assign rn1_d = 9'd255 - {1'b0, ang_i};
+    // (an AND-OR of the misc code's ROM selections, not gated by busy: the word read while idle, word 0,
+    // has no misc action; 0 otherwise, as rsel)
+    logic [3:0] rs;
+    logic [3:0] misc_code;
+    assign misc_code = word[svpwm_pkg::UcMisc +: svpwm_pkg::UcMiscW];
+    assign rs = {misc_code == 4'(svpwm_pkg::MiscRomN1), misc_code == 4'(svpwm_pkg::MiscRomN),
+                 misc_code == 4'(svpwm_pkg::MiscRomI1), misc_code == 4'(svpwm_pkg::MiscRomI)};
+    assign rom_addr = ({9{rs[0]}} & ri_q) | ({9{rs[1]}} & ri1_q) | ({9{rs[2]}} & rn_q) | ({9{rs[3]}} & rn1_q);
 
     sine_rom u_rom (
       .clk_i  (clk_i),
@@ -302,12 +348,14 @@ module svpwm_calc #(
     );
 
     // ---- AUX: the next step's non-RAM operand -------------------------------------------------------------
+    // the input the word selects (the operand of the step after next), registered sign-extended in in_q
     logic [15:0] in_sel;
     logic        in_signed;
+    logic [16:0] in_d, in_q;
     always_comb begin
       in_sel    = 16'd0;
       in_signed = 1'b0;
-      unique case (opnd[3:0])
+      unique case (opnd_d[3:0])
         4'(svpwm_pkg::InM):      in_sel = m_i;
         4'(svpwm_pkg::InTheta):  in_sel = Compact ? 16'd0 : theta_i;
         4'(svpwm_pkg::InV1):     begin in_sel = Compact ? 16'd0 : v1_i; in_signed = !Compact; end
@@ -321,11 +369,12 @@ module svpwm_calc #(
         default:      in_sel = 16'd0;
       endcase
     end
+    assign in_d = {in_signed && in_sel[15], in_sel};
 
     logic [31:0] p_sh;
     logic        rbit;
     always_comb begin
-      unique case (opnd[1:0])
+      unique case (opnd_q[1:0])
         2'd0:    begin p_sh = p >> svpwm_pkg::Psh0; rbit = p[svpwm_pkg::Psh0 - 1]; end
         2'd1:    begin p_sh = p >> svpwm_pkg::Psh1; rbit = p[svpwm_pkg::Psh1 - 1]; end
         2'd2:    begin p_sh = p >> svpwm_pkg::Psh2; rbit = p[svpwm_pkg::Psh2 - 1]; end
@@ -337,10 +386,10 @@ module svpwm_calc #(
     logic [15:0]         q_d, q_q;
     assign acc_s = acc_q;
     always_comb begin
-      unique case (src)
+      unique case (src_q)
         3'(svpwm_pkg::AsRom):  aux_d = W'(rom_q);
         3'(svpwm_pkg::AsProd): aux_d = W'(p_sh);
-        3'(svpwm_pkg::AsIn):   aux_d = in_signed ? W'($signed(in_sel)) : W'(in_sel);
+        3'(svpwm_pkg::AsIn):   aux_d = W'($signed(in_q));
         3'(svpwm_pkg::AsShr9): aux_d = W'(acc_s >>> 9);
         3'(svpwm_pkg::AsShr1): aux_d = W'(acc_s >>> 1);
         3'(svpwm_pkg::AsQ):    aux_d = W'(q_q);
@@ -350,16 +399,16 @@ module svpwm_calc #(
     end
 
     always_comb begin
-      unique case (binv_sel)
+      unique case (binv_sel_q)
         2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
-        2'(svpwm_pkg::BinvC):     binv_d = c[cond];
-        2'(svpwm_pkg::BinvNsign): binv_d = !sign;
+        2'(svpwm_pkg::BinvC):     binv_d = cbit_q;
+        2'(svpwm_pkg::BinvNsign): binv_d = !sign_q;
         default:       binv_d = 1'b0;
       endcase
-      unique case (cin_sel)
+      unique case (cin_sel_q)
         2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
         2'(svpwm_pkg::CinBinv): cin_d = binv_d;
-        2'(svpwm_pkg::CinRnd):  cin_d = ((src == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
+        2'(svpwm_pkg::CinRnd):  cin_d = ((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
         default:     cin_d = 1'b0;
       endcase
     end
@@ -368,15 +417,18 @@ module svpwm_calc #(
     logic [3*CntWidth-1:0] cmp_d, cmp_q;
     logic                  done_q;
 
+    // a flag set / Q shift acts one clock after its step, with sign_q (the builder waits for it)
+    logic       fset_q, qsh_q;
+    logic [4:0] fidx_q;
     for (genvar k = 0; k < svpwm_pkg::CalcFlags; k++) begin : gen_flags
-      assign flags_d[k] = (fset && dst == 5'(k)) ? sign : flags_q[k];
+      assign flags_d[k] = (fset_q && fidx_q == 5'(k)) ? sign_q : flags_q[k];
     end
-    assign q_d = qsh ? {q_q[14:0], !sign} : q_q;
+    assign q_d = qsh_q ? {q_q[14:0], !sign_q} : q_q;
 
     // DQ: the sector of X, Y, Z counts from theta's sector: (sw + sector) mod 6
     logic [3:0] sec_sum;
     logic [2:0] sec_dq;
-    assign sec_sum = {1'b0, sw} + {1'b0, sec_q};
+    assign sec_sum = {1'b0, sw_q} + {1'b0, sec_q};
     assign sec_dq  = (sec_sum >= 4'd6) ? 3'(sec_sum - 4'd6) : sec_sum[2:0];
 
     always_comb begin
@@ -389,7 +441,7 @@ module svpwm_calc #(
       if (ald && pred_ok) ang_d = acc_q[15:0];
       unique case (sec_op)
         2'(svpwm_pkg::SecTheta): if (pred_ok) sec_d = acc_q[18:16];
-        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw;
+        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw_q;
         2'(svpwm_pkg::SecErr):   if (is_err) sec_d = 3'd0;
         default:      ;
       endcase
@@ -409,9 +461,35 @@ module svpwm_calc #(
       if (!rst_ni) begin
         pc_q    <= '0;
         busy_q  <= 1'b0;
-        acc_q   <= '0;
+        acc_lo_q <= '0;
+        aen_q    <= 1'b0;
+        ash_q    <= 1'b0;
+        sign_q   <= 1'b0;
+        held_q   <= 1'b1;
+        top_q    <= 1'b0;
+        fset_q   <= 1'b0;
+        fidx_q   <= '0;
+        qsh_q    <= 1'b0;
+        cond_oh_q <= '0;
+        rcc_q    <= 1'b0;
+        mdec_q   <= '0;
+        dpdec_q  <= '0;
+        dp60_q   <= 1'b0;
         aux_q   <= '0;
         b_ram_q <= 1'b0;
+        src_q      <= '0;
+        opnd_q     <= '0;
+        binv_sel_q <= '0;
+        cin_sel_q  <= '0;
+        rc_q       <= '0;
+        rbits_q    <= '0;
+        cbit_q     <= 1'b0;
+        in_q       <= '0;
+        sw_q       <= '0;
+        ri_q       <= '0;
+        ri1_q      <= '0;
+        rn_q       <= '0;
+        rn1_q      <= '0;
         binv_q  <= 1'b0;
         cin_q   <= 1'b0;
         flags_q <= '0;
@@ -423,9 +501,35 @@ module svpwm_calc #(
       end else begin
         pc_q    <= pc_d;
         busy_q  <= busy_d;
-        acc_q   <= acc_d;
+        acc_lo_q <= acc_lo_d;
+        aen_q    <= aen_d;
+        ash_q    <= ash_d;
+        sign_q   <= sign;
+        held_q   <= held_d;
+        top_q    <= top_d;
+        fset_q   <= fset;
+        fidx_q   <= dst;
+        qsh_q    <= qsh;
+        cond_oh_q <= cond_oh_d;
+        rcc_q    <= rcc_d;
+        mdec_q   <= mdec_d;
+        dpdec_q  <= dpdec_d;
+        dp60_q   <= dp60_d;
         aux_q   <= aux_d;
-        b_ram_q <= (src == 3'(svpwm_pkg::AsNone));
+        b_ram_q <= (src_q == 3'(svpwm_pkg::AsNone));
+        src_q      <= src_d;
+        opnd_q     <= opnd_d;
+        binv_sel_q <= binv_sel_d;
+        cin_sel_q  <= cin_sel_d;
+        rc_q       <= rc_d;
+        rbits_q    <= rbits_d;
+        cbit_q     <= cbit_d;
+        in_q       <= in_d;
+        sw_q       <= sw;
+        ri_q       <= ri_d;
+        ri1_q      <= ri1_d;
+        rn_q       <= rn_d;
+        rn1_q      <= rn1_d;
         binv_q  <= binv_d;
         cin_q   <= cin_d;
         flags_q <= flags_d;
@@ -442,10 +546,11 @@ module svpwm_calc #(
     assign sector_o = sec_q;
     assign cmp_o    = cmp_q;
     assign sat_o    = !flags_q[svpwm_pkg::FSatn];
-    assign err_o    = is_err;
+    assign err_o    = (mode > 3'(svpwm_pkg::ModeDq));   // (from mode_i itself, as the other results: not the
+                                                        // registered decode, which lags mode_i by a clock)
 
     logic unused;
-    assign unused = ^{p_sh};
+    assign unused = ^{p_sh, rsel};          // (rsel: the ROM address decodes the misc code itself)
   end
 
 endmodule

@@ -8,10 +8,10 @@
 package svpwm_pkg;
 
   // clocks from svpwm_calc start_i to done_o, per program (calc_prog.calc_latency)
-  localparam int CalcLatencyFullDsp = 214;
-  localparam int CalcLatencyCompactSerial = 216;
-  localparam int CalcLatencyFullSerial = 431;
-  localparam int CalcLatencyCompactDsp = 118;
+  localparam int CalcLatencyFullDsp = 246;
+  localparam int CalcLatencyCompactSerial = 236;
+  localparam int CalcLatencyFullSerial = 463;
+  localparam int CalcLatencyCompactDsp = 138;
   // smallest MinPeriod default of the full core (the shortest half period the tests exercise)
   localparam int MinPeriodBase = 48;
   // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,

@@ -11,13 +11,18 @@ machine, clock by clock, so the program is checked against fixed.py before any R
 
 Machine, one step per clock (the RTL header repeats this):
   A    = en ? (sh ? ACC << 1 : ACC) : 0
-  B    = (RAM_q | AUX_q) ^ {W{BINV_q}}          both registered: chosen by the word of the step before
+  B    = (RAM_q | AUX_q) ^ {W{BINV_q}}          both registered: chosen by the word two steps before
   sum  = A + B + CIN_q  (W bits);  ACC <- sum | ACC (hold) | sum if cond
   AUX  <- 0 | ROM_q | product >> k | input | ACC >>> 9 | ACC >>> 1 | Q | ANG     (for the next step)
   RAM_q <- RAM[ra | condition bits]; RAM[wa] <- ACC (the value before this step)
   MA, MB <- sat16(B) (MB also <- the angle fraction); product <- MA * MB (registered: ready 2 steps after
-  the last load with the DSP, 17 with the serial unit); ROM_q <- ROM[f(ANG)]; Q <- {Q, !sign}; flags <- sign
-Every word holds the step's own controls and the operand selection of the next step.
+  the last load with the DSP, 17 with the serial unit); ROM_q <- ROM[f(ANG of the clock before)];
+  Q <- {Q, !sign}; flags <- sign
+Every word k holds the own controls of step k, the operand selection of step k + 2 (registered in step k,
+so the operand multiplexers of step k + 1 select from registers, not from the microcode ROM's output) and
+the condition selection of step k + 3 (registered in step k; in step k + 1 the condition bits -- c[cond], the
+sector / snap / DPWM read-address bits -- are computed from the flags into registers, which step k + 2 ORs
+into the read address). Step 1 is empty: its operand would come from the word before the start.
 """
 from __future__ import annotations
 
@@ -42,17 +47,22 @@ SIN60 = fixed.sine_table()[fixed.ROM_SIZE]
 # next step's B operand); the word packs them into 42 bits (three 16-bit block RAMs), sharing bits between
 # fields no step uses together (encode() asserts that):
 OWN_FIELDS = (
-    ("aen", 1), ("ash", 1), ("acc", 1), ("we", 1), ("wa", 5), ("pred", 3), ("fset", 1), ("fidx", 5),
+    ("acc", 1), ("we", 1), ("wa", 5), ("pred", 3), ("fset", 1), ("fidx", 5),
     ("mla", 1), ("mas", 1), ("mlb", 1), ("mbs", 2), ("qsh", 1), ("ald", 1), ("sec", 2), ("rsel", 3),
     ("out", 2), ("done", 1),
 )
-NEXT_FIELDS = (
-    ("ra", 5), ("rc", 3), ("ci", 5), ("asrc", 3), ("isel", 4), ("psh", 2), ("binv", 2), ("bci", 5), ("cin", 2),
-)
-LOGICAL = OWN_FIELDS + NEXT_FIELDS
+# the A operand of step k + 1 (word k: registered, so that the adder's A input comes from registers)
+A_FIELDS = (("aen", 1), ("ash", 1))
+# the operand selection of step k + 2 (word k)
+NEXT_FIELDS = (("ra", 5), ("asrc", 3), ("isel", 4), ("psh", 2), ("binv", 2), ("cin", 2))
+# the condition selection of step k + 3 (word k): the read-address bits and c[cond] (rc C: ci, binv C: bci)
+COND_FIELDS = (("rc", 3), ("cond", 5))
+LOGICAL = OWN_FIELDS + A_FIELDS + NEXT_FIELDS + COND_FIELDS
 # packed word, LSB first:
-#   aen ash hold | wr (0 -, 1 RAM write, 2 flag set) | dst (wa or fidx) | pred | mop | misc | done
-#   src (asrc: 0 = the RAM word) | opnd (ra, isel or psh) | rc | cond (ci or bci) | binv | cin
+#   aen ash                                                                                          (step k + 1)
+#   hold | wr (0 -, 1 RAM write, 2 flag set) | dst (wa or fidx) | pred | mop | misc | done           (step k)
+#   src (asrc: 0 = the RAM word) | opnd (ra, isel or psh) | binv | cin                               (step k + 2)
+#   rc | cond (ci or bci)                                                                            (step k + 3)
 FIELDS = (
     ("aen", 1), ("ash", 1), ("hold", 1), ("wr", 2), ("dst", 5), ("pred", 3), ("mop", 4), ("misc", 4),
     ("done", 1), ("src", 3), ("opnd", 5), ("rc", 3), ("cond", 5), ("binv", 2), ("cin", 2),
@@ -144,13 +154,35 @@ class Program:
         return len(self.steps)
 
     def words(self) -> list[dict]:
-        """Per microcode word k: the own fields of step k and the B selection of step k + 1 (logical fields)."""
+        """Per microcode word k: the own fields of step k, the A selection of step k + 1, the B selection of
+        step k + 2 and the condition selection of step k + 3 (logical fields)."""
         own_names, next_names = dict(OWN_FIELDS), dict(NEXT_FIELDS)
+        n = len(self.steps)
+        # step 1 has no operand (it would come from the word before the start: junk after a done or an abort)
+        st1 = self.steps[1] if n > 1 else {}
+        assert not any(f in next_names or f in ("mla", "mlb", "we", "fset", "qsh") for f in st1), "step 1: B used"
+        for k in (1, 2):
+            st = self.steps[k] if k < n else {}
+            # step 2's condition bits would be computed in the start clock (idle: gated off)
+            assert st.get("rc", RC_NONE) == RC_NONE and st.get("binv") != BINV_C, f"step {k}: a condition"
         out = []
         for k, st in enumerate(self.steps):
             w = {f: v for f, v in st.items() if f in own_names}
-            if k + 1 < len(self.steps):
-                w.update({f: v for f, v in self.steps[k + 1].items() if f in next_names})
+            if k + 1 < n:
+                w.update({f: v for f, v in self.steps[k + 1].items() if f in dict(A_FIELDS)})
+            if k + 2 < n:
+                nx = self.steps[k + 2]
+                if nx.get("asrc", AS_NONE) != AS_NONE:
+                    assert not (nx.get("ra") or nx.get("rc")), f"step {k + 2}: a RAM operand with an AUX source"
+                w.update({f: v for f, v in nx.items() if f in next_names})
+            if k + 3 < n:
+                cs = self.steps[k + 3]
+                rc, binv = cs.get("rc", RC_NONE), cs.get("binv", BINV_NO)
+                assert not (rc == RC_C and binv == BINV_C), f"step {k + 3}: two conditions"
+                assert binv != BINV_NSIGN or cs.get("cin") == CIN_BINV, f"step {k + 3}: BINV_NSIGN needs CIN_BINV"
+                cond = cs.get("ci", 0) if rc == RC_C else cs.get("bci", 0) if binv == BINV_C else 0
+                assert cs.get("ci", 0) in (0, cond) and cs.get("bci", 0) in (0, cond), k + 3
+                w.update(rc=rc, cond=cond)
             out.append(w)
         return out
 
@@ -183,12 +215,10 @@ def pack(w: dict, k: int = -1) -> int:
         assert not (g["isel"] or g["psh"]), k
         opnd = g["ra"]
     else:
-        assert not (g["ra"] or g["rc"]), f"word {k}: a RAM operand with an AUX source"
+        assert not g["ra"], f"word {k}: a RAM operand with an AUX source"
         opnd = g["isel"] if g["asrc"] == AS_IN else g["psh"] if g["asrc"] == AS_PROD else 0
         assert g["asrc"] in (AS_IN, AS_PROD) or not (g["isel"] or g["psh"]), k
-    assert not (g["rc"] == RC_C and g["binv"] == BINV_C), f"word {k}: two conditions"
-    cond = g["ci"] if g["rc"] == RC_C else g["bci"] if g["binv"] == BINV_C else 0
-    assert g["ci"] in (0, cond) and g["bci"] in (0, cond), k
+    cond = g["cond"]
     f = dict(aen=g["aen"], ash=g["ash"], hold=g["acc"], wr=WR_RAM if g["we"] else WR_FLAG if g["fset"] else 0,
              dst=g["wa"] if g["we"] else g["fidx"], pred=g["pred"], mop=MOP[kmop], misc=MISC[kmisc],
              done=g["done"], src=g["asrc"], opnd=opnd, rc=g["rc"], cond=cond, binv=g["binv"], cin=g["cin"])
@@ -208,7 +238,7 @@ def decode(word: int) -> dict:
     f = {n: (word >> p) & ((1 << w) - 1) for n, (p, w) in field_pos().items()}
     g = dict(aen=f["aen"], ash=f["ash"], acc=f["hold"], we=int(f["wr"] == WR_RAM), fset=int(f["wr"] == WR_FLAG),
              wa=f["dst"], fidx=f["dst"], pred=f["pred"], done=f["done"], asrc=f["src"], rc=f["rc"],
-             ci=f["cond"], bci=f["cond"], binv=f["binv"], cin=f["cin"])
+             cond=f["cond"], binv=f["binv"], cin=f["cin"])
     g["mla"], g["mas"], g["mlb"], g["mbs"] = _MOP_INV[f["mop"]]
     g["qsh"], g["ald"], g["sec"], g["rsel"], g["out"] = _MISC_INV[f["misc"]]
     g["ra"] = f["opnd"] if f["src"] == AS_NONE else 0
@@ -264,17 +294,20 @@ _DERIVED = {C_MIDSGN: (F_FIRST,), C_NV1N: (F_V1N,), C_NHALF: (F_HALF,)}
 
 class Builder:
     """Places steps at a cursor and waits by itself for what a step reads: a RAM word written by an earlier
-    step (readable as B two steps after the write), a flag (two steps after it is set), a product."""
+    step (readable as B two steps after the write), a flag (as a condition of B three steps after it is set:
+    the condition bits are registered), a product, a ROM word (four steps after the angle it is addressed by),
+    the sector's Table 4-3 codes (registered from the sector: an out step two steps after the sector's load)."""
 
     def __init__(self, compact: bool, dsp: bool):
         self.p = Program(compact=compact, dsp=dsp)
-        self.t = 1
+        self.t = 2                            # step 1 is empty (Program.words)
         self.dsp = dsp
         self.mul_lat = 2 if dsp else 17
         self.wt: dict[int, int] = {}          # RAM address -> step that writes it
         self.ft: dict[int, int] = {}          # flag -> step that sets it
         self.busy_until = 0                   # serial multiplier: MA / MB must hold until this step
-        self.acc_t = self.q_t = self.ang_t = -9   # last steps that changed ACC, Q, ANG
+        self.acc_t = self.q_t = -9            # last steps that changed ACC, Q, ANG, the sector
+        self.ang_t = self.sec_t = 0           # (the start clock loads ANG and the sector)
 
     def _flags_of(self, c: int):
         if c < N_FLAGS:
@@ -283,13 +316,16 @@ class Builder:
 
     def _ready(self, b: dict) -> int:
         need = 1
+        if b.get("binv") == BINV_NSIGN:                   # the sign of the step two before (registered)
+            assert self.p.steps[self.t - 1].get("acc") == ACC_HOLD and self.acc_t == self.t - 2, self.t
         if "rom" in b:
-            need = max(need, 3, self.ang_t + 3)           # the read (two steps before) sees the new ANG
+            need = max(need, 3, self.ang_t + 4)           # the read (two steps before) sees the new ANG
+            #                                               (the ROM addresses are registered from ANG)
         asrc = b.get("asrc")
         if asrc in (AS_SHR9, AS_SHR1):                    # AUX takes ACC in the step before B
             need = max(need, self.acc_t + 2)
-        if asrc == AS_Q:
-            need = max(need, self.q_t + 2)
+        if asrc == AS_Q:                                  # (the Q shift takes the sign one clock later)
+            need = max(need, self.q_t + 3)
         if asrc == AS_ANG:
             need = max(need, self.ang_t + 2)
         if b.get("ra") is not None and "ra" in b:
@@ -298,13 +334,17 @@ class Builder:
                 if a in self.wt:
                     need = max(need, self.wt[a] + 2)
             fl = _RC_FLAGS.get(rc, ()) + (self._flags_of(b.get("ci", 0)) if rc == RC_C else ())
-            for f in fl:
+            for f in fl:                                  # flags: set one clock after their step
                 if f in self.ft:
-                    need = max(need, self.ft[f] + 2)
+                    need = max(need, self.ft[f] + (5 if rc in (RC_SW, RC_SW1) else 4))   # (sw_q: one more)
+            if rc == RC_C and b.get("ci") == C_MIDSGN:
+                need = max(need, self.sec_t + 4)
         if b.get("binv") == BINV_C:
             for f in self._flags_of(b["bci"]):
                 if f in self.ft:
-                    need = max(need, self.ft[f] + 2)
+                    need = max(need, self.ft[f] + 4)
+            if b["bci"] == C_MIDSGN:                      # the Table 4-3 codes of the sector (sel) are
+                need = max(need, self.sec_t + 4)          # registered from it: c[] one step later still
         return need
 
     def put(self, t: int, b: dict | None = None, **own) -> None:
@@ -351,6 +391,13 @@ class Builder:
             self.q_t = t
         if s.get("ald"):
             self.ang_t = t
+        if s.get("sec") == SEC_XYZ:                       # the sector of the signs comes from a register
+            sgn = [self.ft.get(f, -9) for f in _RC_FLAGS[RC_SW]]
+            assert t >= max(sgn) + 3, f"step {t}: sector from flags set in step {max(sgn)}"
+        if s.get("out"):
+            assert t >= self.sec_t + 2, f"step {t}: out with the sector of step {self.sec_t}"
+        if s.get("sec"):
+            self.sec_t = t
         if own.get("fset"):
             self.ft[own["fidx"]] = t
         if own.get("we"):
@@ -480,14 +527,33 @@ class Machine:
             flags = [junk.getrandbits(1) for _ in range(32)]
             q, ma, mb = junk.getrandbits(16), junk.getrandbits(16), junk.getrandbits(16)
             p = ma * mb
+        # registers of the operand selection (the word before: NEXT_FIELDS), the condition selection and its
+        # bits, the selected input, the sector's sign code and Table 4-3 codes, the ROM address's angle
+        a_q = {n: 0 for n, _ in A_FIELDS}
+        nx = {n: 0 for n, _ in NEXT_FIELDS}
+        cx = {n: 0 for n, _ in COND_FIELDS}
+        rbits_q = cbit_q = 0
+        in_q = 0
+        sec_p = sec                       # the sector of the clock before (sel)
+        sw_q = 0
+        ang_p = ang                       # the angle of the clock before (ROM address)
+        if junk is not None:
+            nx = {n: junk.getrandbits(w) for n, w in NEXT_FIELDS}
+            nx["asrc"], nx["psh"], nx["isel"] = AS_NONE, 0, 0     # (B of step 1 is not used: any RAM word)
+            cx = {n: junk.getrandbits(w) for n, w in COND_FIELDS}
+            rbits_q, cbit_q, in_q = junk.getrandbits(3), junk.getrandbits(1), junk.getrandbits(16)
+            sec_p, sw_q, ang_p = junk.randrange(6), junk.randrange(6), junk.getrandbits(16)
+        pend_f, pend_q, sign_q = None, 0, 0     # the flag set / Q shift of the clock before, its sign
         ser_left = 0
         ser_prod = None
         cmp = [0, 0, 0] if junk is None else [junk.getrandbits(self.cw) for _ in range(3)]
         table = fixed.sine_table()
         out = None
         for k, w in enumerate(self.words):
-            # conditions (registered flags and the held mode / dpwm inputs)
-            sel = fixed.SECTOR_SEL[sec if sec < 6 else 5]
+            busy = k > 0
+            # conditions (registered flags, the held mode / dpwm inputs, the Table 4-3 codes registered from
+            # the sector of the clock before)
+            sel = fixed.SECTOR_SEL[sec_p if sec_p < 6 else 5]
             midneg = any(c == 3 for c in sel)
             c = flags[:N_FLAGS] + [0] * (32 - N_FLAGS)
             c[C_VF], c[C_XY], c[C_ERR], c[C_DQ] = int(is_vf), int(is_ab or is_dq), int(is_err), int(is_dq)
@@ -497,34 +563,40 @@ class Machine:
                 # idle word: only its next fields matter
                 a_val, b_val, s = 0, 0, 0
             else:
-                a_val = ((acc << 1) if w["ash"] else acc) & mask if w["aen"] else 0
+                a_val = ((acc << 1) if a_q["ash"] else acc) & mask if a_q["aen"] else 0
                 b_val = ((ram_q | aux_q) ^ (mask if binv_q else 0)) & mask
                 s = (a_val + b_val + cin_q) & mask
             sign = (s >> (W - 1)) & 1
             pred = {PRED_ALL: True, PRED_TH: is_th, PRED_AB: is_ab, PRED_DQ: is_dq, PRED_XY: is_ab or is_dq}[w["pred"]]
-            # ---- next-step operand selection (reads registered state of this step) ----
-            rc = w["rc"]
+            # ---- condition bits of the step after next (cx: registered from the word before) ----
             sw = sector_of_flags(flags)
-            bits = {RC_NONE: 0, RC_C: c[w["ci"]], RC_SW: sw % 3, RC_SW1: (sw + 1) % 3, RC_SNAP: snap_bits(flags),
+            bits = {RC_NONE: 0, RC_C: c[cx["cond"]], RC_SW: sw_q % 3, RC_SW1: (sw_q + 1) % 3,
+                    RC_SNAP: snap_bits(flags),
                     RC_DPWM: (int(dpwm == fixed.DPWM_OFF) << 1) | int(dpwm == fixed.DPWM_MAX or
                                                                       (dpwm == fixed.DPWM_60 and not flags[F_DP60])),
-                    RC_MERGE: (int(is_err) << 1) | int(is_ab or is_dq)}[rc]
-            ra = w["ra"] | bits
+                    RC_MERGE: (int(is_err) << 1) | int(is_ab or is_dq)}.get(cx["rc"], 0)
+            n_rbits = bits if busy else 0
+            n_cbit = c[cx["cond"]] if busy else 0
+            # ---- next-step operand selection (nx: registered from the word before) ----
+            ra = nx["ra"] | rbits_q
             assert ra < RAM_WORDS
             n_ram_q = ram[ra]
             if k and w["we"] and pred:
                 assert w["wa"] != ra or not w["we"], f"step {k}: read and write of word {ra} together"
-            asrc = w["asrc"]
-            sh = PSH[w["psh"]]
+            asrc = nx["asrc"]
+            sh = PSH[nx["psh"]]
             pv = p if self.prog.dsp else ser_prod
-            if asrc == AS_PROD:
+            if asrc == AS_PROD and k:
                 assert pv is not None, f"step {k}: product read while the serial multiplier runs"
             n_aux = {AS_NONE: 0, AS_ROM: rom_q, AS_PROD: ((pv or 0) >> sh),
-                     AS_IN: _sx(ins[w["isel"]], 16) if w["isel"] in IN_SIGNED else ins[w["isel"]] & 0xFFFF,
-                     AS_SHR9: _sx(acc, W) >> 9, AS_SHR1: _sx(acc, W) >> 1, AS_Q: q, AS_ANG: ang}[asrc] & mask
-            n_binv = {BINV_NO: 0, BINV_YES: 1, BINV_C: c[w["bci"]], BINV_NSIGN: 1 - sign}[w["binv"]]
+                     AS_IN: in_q, AS_SHR9: _sx(acc, W) >> 9, AS_SHR1: _sx(acc, W) >> 1, AS_Q: q,
+                     AS_ANG: ang}.get(asrc, 0) & mask
+            n_binv = {BINV_NO: 0, BINV_YES: 1, BINV_C: cbit_q, BINV_NSIGN: 1 - sign_q}[nx["binv"]]
             rbit = (((pv or 0) >> (sh - 1)) & 1) if (asrc == AS_PROD and sh) else 0
-            n_cin = {CIN_0: 0, CIN_1: 1, CIN_BINV: n_binv, CIN_RND: rbit ^ n_binv}[w["cin"]]
+            n_cin = {CIN_0: 0, CIN_1: 1, CIN_BINV: n_binv, CIN_RND: rbit ^ n_binv}[nx["cin"]]
+            # the input the word selects (the operand of the step after next), registered
+            isel = w["isel"]
+            n_in = (_sx(ins[isel], 16) if isel in IN_SIGNED else ins[isel] & 0xFFFF) & mask
             # ---- own fields ----
             n_acc = acc
             if k:
@@ -532,10 +604,13 @@ class Machine:
                 if w["we"] and pred:
                     assert w["wa"] not in ZERO_WORDS
                     ram[w["wa"]] = acc
-                if w["fset"]:
-                    flags[w["fidx"]] = sign
-                if w["qsh"]:
-                    q = ((q << 1) | (1 - sign)) & 0xFFFF
+                # a flag set / Q shift takes the sign registered in its step one clock later
+                if pend_f is not None:
+                    flags[pend_f] = sign_q
+                if pend_q:
+                    q = ((q << 1) | (1 - sign_q)) & 0xFFFF
+                pend_f = w["fidx"] if w["fset"] else None
+                pend_q = w["qsh"]
                 n_ma, n_mb = ma, mb
                 if w["mla"]:
                     n_ma = sat16(acc if w["mas"] else b_val)
@@ -547,14 +622,14 @@ class Machine:
                 if w["sec"] == SEC_THETA and pred:
                     n_sec = (acc >> 16) & 7
                 elif w["sec"] == SEC_XYZ and pred:
-                    n_sec = (sw + sec) % 6 if is_dq else sw
+                    n_sec = (sw_q + sec) % 6 if is_dq else sw_q
                 elif w["sec"] == SEC_ERR and is_err:
                     n_sec = 0
                 if w["out"]:
                     for ph in range(3):
                         if sel_class(sel[ph]) == w["out"]:
                             cmp[ph] = acc & ((1 << self.cw) - 1)
-                i = (ang >> 8) & 0xFF
+                i = (ang_p >> 8) & 0xFF
                 addr = {ROM_OFF: 0, ROM_I: i, ROM_I1: i + 1, ROM_N: 256 - i, ROM_N1: 255 - i}[w["rsel"]]
                 n_rom = table[addr]
                 # multiplier
@@ -572,10 +647,16 @@ class Machine:
                         assert ser_left == 0, f"step {k}: MA changed while the serial multiplier runs"
                 if w["done"]:
                     out = (sec, tuple(cmp), not flags[F_SATN], is_err)
-                ma, mb, ang, sec, rom_q = n_ma, n_mb, n_ang, n_sec, n_rom
+                ma, mb, ang_p, ang, sec_p, sec, rom_q = n_ma, n_mb, ang, n_ang, sec, n_sec, n_rom
+            # (the start clock: ANG and the sector load the inputs, which the model holds from the start on;
+            # ang_p / sec_p keep the state from before the start)
             if trace is not None:
                 trace.append((k, _sx(acc, W), _sx(n_acc, W), a_val, _sx(b_val, W), cin_q))
             acc, ram_q, aux_q, binv_q, cin_q = n_acc, n_ram_q, n_aux, n_binv, n_cin
+            a_q = {n: w[n] for n, _ in A_FIELDS}
+            nx = {n: w[n] for n, _ in NEXT_FIELDS}
+            cx = {n: w[n] for n, _ in COND_FIELDS}
+            rbits_q, cbit_q, in_q, sw_q, sign_q = n_rbits, n_cbit, n_in, sw, sign
         assert out is not None, "the program never signalled done"
         return out
 
@@ -743,9 +824,11 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     g.add(ram(R_MIN + 1, inv=True))                       # max = s - min
     g.write(R_MAX + 1)
     g.load(ram(R_MIN + 1))                                # remainder = min (< s)
-    # 16 non-restoring steps: rem <- 2 rem -+ s by the sign of rem, quotient bit = new rem >= 0
+    # 16 non-restoring steps: rem <- 2 rem -+ s by the sign of rem, quotient bit = new rem >= 0 (BINV_NSIGN
+    # inverts by the registered sign of the step two before: a hold between the steps)
     g.add2(ram(R_S, inv=True), qsh=1)
     for _ in range(15):
+        g.hold()
         g.add2(ram(R_S, binv=BINV_NSIGN, cin=CIN_BINV), qsh=1)
     g.load(aux(AS_Q))                                     # q
     g.write(R_MIN)

@@ -99,7 +99,7 @@ def test_words(compact, dsp):
         assert 0 <= word < (1 << cp.WORD_BITS)
         got = cp.decode(word)
         for n in names:
-            shared = {"wa": "we", "fidx": "fset", "ci": "rc", "bci": "binv"}
+            shared = {"wa": "we", "fidx": "fset"}
             if n in shared and not w.get(shared[n]):
                 continue                                       # a shared field's bits belong to the other use
             assert got[n] == w.get(n, 0), (k, n)
@@ -111,15 +111,16 @@ def test_words(compact, dsp):
 @pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
 def test_idle_word_and_fabs(compact, dsp):
     """Word 0 is the idle word: no own fields (the ROM reads it whenever the machine is idle). The |f|, period
-    and threshold inputs (fabs_i, period_i, thr_i) are read into AUX at step 2 at the earliest: svpwm_core
-    registers them in the start clock (|f| one clock after the frequency word it samples with the reference),
-    i.e. they are valid from the calculator's step 1 on."""
+    and threshold inputs (fabs_i, period_i, thr_i) are read at step 1 at the earliest (the input register of
+    the operand of step k loads in clock k - 2): svpwm_core registers them in the start clock (|f| one clock
+    after the frequency word it samples with the reference), i.e. they are valid from the calculator's step 1
+    on. Step 1 has no operand (it would come from the word before the start)."""
     prog = cp.program(compact, dsp)
     w0 = cp.decode(prog.encode()[0])
     assert all(w0[n] == 0 for n, _ in cp.OWN_FIELDS), w0
     late = (cp.IN_FABS, cp.IN_PERIOD, cp.IN_THR)
     reads = [k for k, st in enumerate(prog.steps) if st.get("asrc") == cp.AS_IN and st.get("isel") in late]
-    assert reads and all(k - 1 >= 1 for k in reads), reads   # operand of step k is taken in clock k - 1
+    assert reads and all(k - 2 >= 1 for k in reads), reads   # the input of step k is taken in clock k - 2
 
 
 @pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
@@ -142,6 +143,13 @@ def test_misuse_is_refused():
         cp.pack(dict(qsh=1, rsel=cp.ROM_I))
     with pytest.raises(AssertionError):
         cp.pack(dict(asrc=cp.AS_IN, isel=1, ra=5))
+    # step 1 has no operand; step 2 no condition (its condition bits would be computed in the start clock)
+    with pytest.raises(AssertionError):
+        cp.Program(False, True, [{}, cp.ram(8), {}]).words()
+    with pytest.raises(AssertionError):
+        cp.Program(False, True, [{}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF), {}]).words()
+    with pytest.raises(AssertionError):
+        cp.Program(False, True, [{}, {}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF, binv=cp.BINV_C, bci=cp.F_VF)]).words()
 
 
 @pytest.mark.parametrize("compact,dsp", PROGRAMS[:2], ids=IDS[:2])

@@ -356,7 +356,7 @@ module svpwm_core #(
   logic [2:0]            acc_sector;
   logic [PhaseWidth-1:0] acc_angle;
 
-  svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(!Compact)) u_phase (
+  svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(1'b0)) u_phase (
     .clk_i    (clk_i),
     .rst_ni   (rst_ni),
     .run_i    (run),

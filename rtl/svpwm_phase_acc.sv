@@ -4,15 +4,17 @@
 // stepped each time theta' wraps, so no division by 6 is needed. Verma's sector + angle + fraction word
 // is the same idea: here the angle is a PhaseWidth-bit binary fraction of 60 deg.
 // Parameters: PhaseWidth - angle fraction bits; FreqWidth - signed step width (FreqWidth < PhaseWidth);
-//   CarrySelect - 1: the carry-select adder below (faster), 0: one PhaseWidth + 1 bit carry chain (fewer
-//   logic cells; svpwm_core's compact variant). Both give the same angle and sector in every clock.
+//   CarrySelect - 1: the carry-select adder below, 0: one PhaseWidth + 1 bit carry chain (fewer logic
+//   cells; svpwm_core uses it: with the wrap registered at the chain's end it is as fast on the UP5K).
+//   Both give the same angle and sector in every clock.
 // One LSB of step_i is 60 deg / 2^PhaseWidth per clock, i.e. f_out = step * f_clk / (6 * 2^PhaseWidth).
-// Latency: none, sector_o / angle_o are the registers. Negative steps rotate backwards, zero stands still.
+// Latency: none: angle_o is a register; sector_o is the sector register stepped by the wrap registered
+// in the clock before (two LUT levels from flip-flops). Negative steps rotate backwards, zero stands still.
 // Timing (CarrySelect 1): only the low FreqWidth bits are one carry chain; the upper bits (angle + 0 /
 // +1 / -1) are formed beside it and selected by its carry; the sector's wrap (at 60 deg / below 0) is
 // the sum bit of two more adder bits on top of the chain (operands one LUT from registers: &hi and
 // hi == 0 are kept as flags beside the angle), so it leaves the chain with no logic behind it (also
-// with CarrySelect 0, where it is the chain's top sum bit).
+// with CarrySelect 0, where it is the chain's top sum bit) into a register (wrap_q).
 `default_nettype none
 
 module svpwm_phase_acc #(
@@ -36,7 +38,8 @@ module svpwm_phase_acc #(
   localparam int HiWidth = PhaseWidth - FreqWidth;
 
   logic [PhaseWidth-1:0] angle_d, angle_q, angle_new;
-  logic [2:0]            sector_d, sector_q, sec_up, sec_dn;
+  logic [2:0]            sector_q, sector_now, sec_up, sec_dn;
+  logic                  wrap_d, wrap_q, dn_q;   // a wrap in the last clock (and its direction, down)
   logic                  neg, wrap;     // wrap: the sum leaves [0, 60 deg) (up if !neg, down if neg)
 
   assign neg = step_i[FreqWidth-1];
@@ -102,51 +105,56 @@ module svpwm_phase_acc #(
     assign wrap      = sum[PhaseWidth];
   end
 
-  assign sec_up  = (sector_q >= 3'd5) ? 3'd0 : sector_q + 3'd1;
-  assign sec_dn  = (sector_q == 3'd0) ? 3'd5 : sector_q - 3'd1;
+  // the wrap is registered straight from the adder (wrap_q, no LUT or enable behind the carry chain) and
+  // applied to the sector one clock later: sector_o = sector_q stepped by the last clock's wrap, so the
+  // output is the same in every clock as a sector register stepped at once
+  assign sec_up     = (sector_q >= 3'd5) ? 3'd0 : sector_q + 3'd1;
+  assign sec_dn     = (sector_q == 3'd0) ? 3'd5 : sector_q - 3'd1;
+  assign sector_now = !wrap_q ? sector_q : dn_q ? sec_dn : sec_up;
+  assign wrap_d     = run_i && wrap;
 
   always_comb begin
-    angle_d  = angle_q;
-    sector_d = sector_q;
-    if (run_i) begin
-      angle_d = angle_new;
-      if (wrap) sector_d = neg ? sec_dn : sec_up;   // the direction from registers only
-    end
+    angle_d = angle_q;
+    if (run_i) angle_d = angle_new;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       angle_q  <= '0;
       sector_q <= '0;
+      wrap_q   <= 1'b0;
+      dn_q     <= 1'b0;
     end else begin
       angle_q  <= angle_d;
-      sector_q <= sector_d;
+      sector_q <= sector_now;
+      wrap_q   <= wrap_d;
+      dn_q     <= neg;
     end
   end
 
-  assign sector_o = sector_q;
+  assign sector_o = sector_now;
   assign angle_o  = angle_q;
 
 `ifdef FORMAL
   logic f_past_valid = 1'b0;
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
-  always_comb if (rst_ni) assert (sector_q <= 3'd5);
+  always_comb if (rst_ni) assert (sector_q <= 3'd5 && sector_now <= 3'd5);
   // fixed.angle_step: the position in the turn, sector * 2^PhaseWidth + angle, advances by step_i
   // modulo 6 * 2^PhaseWidth in every clock with run_i (one wrap at most: |step| < 2^PhaseWidth)
   localparam logic [PhaseWidth+3:0] FTurn = (PhaseWidth + 4)'(6) << PhaseWidth;
   logic [PhaseWidth+3:0] f_pos, f_sum, f_next;
-  assign f_pos  = {1'b0, sector_q, angle_q};
+  assign f_pos  = {1'b0, sector_now, angle_q};
   assign f_sum  = f_pos + {{(PhaseWidth + 4 - FreqWidth){step_i[FreqWidth-1]}}, step_i};
   assign f_next = f_sum[PhaseWidth+3] ? f_sum + FTurn : (f_sum >= FTurn) ? f_sum - FTurn : f_sum;
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni)
     assert (f_pos == ($past(run_i) ? $past(f_next) : $past(f_pos)));
-  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_q) == 3'd5
-                                    && sector_q == 3'd0);
-  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_q) == 3'd0
-                                    && sector_q == 3'd5);
-  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_q) == 3'd5
-                                    && sector_q == 3'd0 && angle_q == '0);     // landing on 60 deg
+  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_now) == 3'd5
+                                    && sector_now == 3'd0);
+  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_now) == 3'd0
+                                    && sector_now == 3'd5);
+  always_ff @(posedge clk_i) cover (f_past_valid && $past(rst_ni) && rst_ni && $past(sector_now) == 3'd5
+                                    && sector_now == 3'd0 && angle_q == '0);     // landing on 60 deg
 `endif
 
 endmodule

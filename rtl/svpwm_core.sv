@@ -15,7 +15,7 @@
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4,
-//                the default: svpwm_pkg::min_period(Compact), 219 / 230 clocks)
+//                the default: svpwm_pkg::min_period(Compact), 251 / 230 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
@@ -25,7 +25,7 @@
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
 // vf_*, dpwm_i, mode_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
-// calculator's program + load 1: 215, compact 226), in the clock before count == SampleLead (down) /
+// calculator's program + load 1: 247, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and
 // mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an update at

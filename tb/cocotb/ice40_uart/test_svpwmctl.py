@@ -249,7 +249,7 @@ def test_bad_values_refused_nothing_written(argv, match):
 
 def test_locked_and_period_rules():
     fb = FakeBoard()
-    p = fixed.MIN_PERIOD                               # the shortest period (odd: 219)
+    p = fixed.MIN_PERIOD                               # the shortest period (odd: 251)
     cmd(fb, "set-period", "--clocks", str(p))
     with pytest.raises(ValueError, match="PERIOD >= 2"):
         cmd(fb, "set-dt", f"{(p // 2 + 1) / 48:.4f}")  # p // 2 + 1 clocks at 48 MHz: 2 dt > p

@@ -6,6 +6,9 @@
 // middle of a carrier period.
 // Parameters:
 //   AddrWidth - byte address width of the register port (>= 7); addresses without a register read 0
+//   AddrEarly - svpwm_regs AddrEarly: 1 when addr_i already holds the request's address in the clock
+//               before every request (uart_reg_bridge): the register select is then decoded a clock
+//               ahead, registered (shorter paths); 0 (default) for the bus adapters
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
 //               MinPeriod defaults to the core's default of the variant (48, compact 230)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
@@ -18,12 +21,14 @@
 //               and sets STATUS.period_clamp while it is there. Read back in CONFIG.cnt_width.
 //   The other widths are those of the register map: PhaseWidth 34, FreqWidth 24, DtWidth 10 (CONFIG).
 // Latency: register port: a write is in the register the clock after req_i; read data the clock after.
-// Restrictions: see svpwm_regs (one access per clock, be_i byte lanes).
+// Restrictions: see svpwm_regs (one access per clock, be_i byte lanes; AddrEarly = 1: addr_i unchanged
+//   from the clock before a request).
 `default_nettype none
 
 module svpwm_mmio #(
   parameter bit         Compact   = 1'b0,
   parameter int         AddrWidth = 8,
+  parameter bit         AddrEarly = 1'b0,
   parameter int         MinPeriod = svpwm_pkg::min_period(Compact),
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
@@ -82,6 +87,7 @@ module svpwm_mmio #(
 
   svpwm_regs #(
     .AddrWidth (AddrWidth),
+    .AddrEarly (AddrEarly),
     .DtWidth   (8'(DtWidth)),
     .CntWidth  (8'(CntWidth)),
     .FreqWidth (8'(FreqWidth)),

@@ -4,6 +4,11 @@
 // per clock with req_i; RW fields drive the svpwm_core inputs, RO fields read the core's outputs.
 // Parameters:
 //   AddrWidth - byte address width (>= 7); every address bit is decoded, addr_i[1:0] ignored
+//   AddrEarly - 0: addr_i is decoded in the clock of the request (any bus adapter); 1: addr_i is
+//             decoded every clock into a registered one-hot register select, so that the write
+//             enables and the read multiplexer start at flip-flops (shorter paths); addr_i must
+//             then hold the request's address from the clock before the request (uart_reg_bridge:
+//             its address byte arrives a byte time before its request)
 //   DtWidth - value of CONFIG.dt_width (rst_param; RDL default 10)
 //   CntWidth - value of CONFIG.cnt_width (rst_param; RDL default 16)
 //   FreqWidth - value of CONFIG.freq_width (rst_param; RDL default 24)
@@ -17,11 +22,13 @@
 // Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid
 // the clock after a read request and holds until the next read request.
 // Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore
-// writes; addresses without a register read 0 and ignore writes; pulse fields read 0.
+// writes; addresses without a register read 0 and ignore writes; pulse fields read 0. AddrEarly = 1:
+// addr_i unchanged from the clock before a request to the request (checked in simulation).
 `default_nettype none
 
 module svpwm_regs #(
   parameter int AddrWidth = 8,
+  parameter bit AddrEarly = 1'b0,
   parameter logic [7:0] DtWidth = 8'hA,
   parameter logic [7:0] CntWidth = 8'h10,
   parameter logic [7:0] FreqWidth = 8'h18,
@@ -34,7 +41,7 @@ module svpwm_regs #(
   input  logic                 rst_ni,    // asynchronous reset, active low
   input  logic                 req_i,     // access request (one access per clock)
   input  logic                 we_i,      // 1 write, 0 read
-  input  logic [AddrWidth-1:0] addr_i,    // byte address
+  input  logic [AddrWidth-1:0] addr_i,    // byte address (AddrEarly: from the clock before req_i)
   input  logic [31:0]          wdata_i,   // write data
   input  logic [3:0]           be_i,      // byte enables of wdata_i
   output logic [31:0]          rdata_o,   // read data, the clock after the read request
@@ -111,12 +118,96 @@ module svpwm_regs #(
   localparam logic [AddrWidth-3:0] IdxClkHz = (AddrWidth-2)'(22);
   localparam logic [AddrWidth-3:0] IdxFeatures = (AddrWidth-2)'(23);
 
+  // bit of each register in the one-hot register select
+  localparam int SelId = 0;
+  localparam int SelVersion = 1;
+  localparam int SelConfig = 2;
+  localparam int SelCtrl = 3;
+  localparam int SelFreq = 4;
+  localparam int SelM = 5;
+  localparam int SelTheta = 6;
+  localparam int SelV1 = 7;
+  localparam int SelV2 = 8;
+  localparam int SelVfBoost = 9;
+  localparam int SelVfSlope = 10;
+  localparam int SelVfMmax = 11;
+  localparam int SelPeriod = 12;
+  localparam int SelDt = 13;
+  localparam int SelMp = 14;
+  localparam int SelPresc = 15;
+  localparam int SelStatus = 16;
+  localparam int SelCarrier = 17;
+  localparam int SelPeriodAct = 18;
+  localparam int SelCmpA = 19;
+  localparam int SelCmpB = 20;
+  localparam int SelCmpC = 21;
+  localparam int SelClkHz = 22;
+  localparam int SelFeatures = 23;
+  localparam int NumRegs = 24;
+
   logic [AddrWidth-3:0] idx;
   logic                 wr, rd;
+  logic [NumRegs-1:0]   sel_d, sel;  // one-hot register select: of addr_i, of the access
 
   assign idx = addr_i[AddrWidth-1:2];
   assign wr  = req_i && we_i;
   assign rd  = req_i && !we_i;
+
+  always_comb begin
+    sel_d = '0;
+    unique case (idx)
+      IdxId: sel_d[SelId] = 1'b1;
+      IdxVersion: sel_d[SelVersion] = 1'b1;
+      IdxConfig: sel_d[SelConfig] = 1'b1;
+      IdxCtrl: sel_d[SelCtrl] = 1'b1;
+      IdxFreq: sel_d[SelFreq] = 1'b1;
+      IdxM: sel_d[SelM] = 1'b1;
+      IdxTheta: sel_d[SelTheta] = 1'b1;
+      IdxV1: sel_d[SelV1] = 1'b1;
+      IdxV2: sel_d[SelV2] = 1'b1;
+      IdxVfBoost: sel_d[SelVfBoost] = 1'b1;
+      IdxVfSlope: sel_d[SelVfSlope] = 1'b1;
+      IdxVfMmax: sel_d[SelVfMmax] = 1'b1;
+      IdxPeriod: sel_d[SelPeriod] = 1'b1;
+      IdxDt: sel_d[SelDt] = 1'b1;
+      IdxMp: sel_d[SelMp] = 1'b1;
+      IdxPresc: sel_d[SelPresc] = 1'b1;
+      IdxStatus: sel_d[SelStatus] = 1'b1;
+      IdxCarrier: sel_d[SelCarrier] = 1'b1;
+      IdxPeriodAct: sel_d[SelPeriodAct] = 1'b1;
+      IdxCmpA: sel_d[SelCmpA] = 1'b1;
+      IdxCmpB: sel_d[SelCmpB] = 1'b1;
+      IdxCmpC: sel_d[SelCmpC] = 1'b1;
+      IdxClkHz: sel_d[SelClkHz] = 1'b1;
+      IdxFeatures: sel_d[SelFeatures] = 1'b1;
+      default: ;  // no register here: no select bit
+    endcase
+  end
+
+  if (AddrEarly) begin : gen_sel_early
+    // the select of the address of the clock before (= the request's address, the restriction)
+    logic [NumRegs-1:0] sel_q;
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        sel_q <= '0;
+      end else begin
+        sel_q <= sel_d;
+      end
+    end
+    assign sel = sel_q;
+
+`ifndef SYNTHESIS
+    // simulation check of the restriction: addr_i changed in the clock of a request
+    always @(posedge clk_i) begin
+      if (req_i && sel_d != sel_q) begin
+        $fatal(1, "svpwm_regs: AddrEarly = 1, but addr_i changed in the clock of a request (%m)");
+      end
+    end
+`endif
+  end else begin : gen_sel_now
+    assign sel = sel_d;
+  end
 
   // ---- storage: the value each field takes when its register is written -------------------------
   // fields of both variants
@@ -152,30 +243,25 @@ module svpwm_regs #(
     m_d = m_q;
     period_d = period_q;
     dt_d = dt_q;
-    if (wr) begin
-      case (idx)
-        IdxCtrl: begin
-          ctrl_en_d = ctrl_en_wr;
-          ctrl_trip_cbc_d = ctrl_trip_cbc_wr;
-          ctrl_safe_lo_d = ctrl_safe_lo_wr;
-          ctrl_pol_d = ctrl_pol_wr;
-          ctrl_lock_d = ctrl_lock_wr;
-          ctrl_fault_clear_d = ctrl_fault_clear_wr;
-        end
-        IdxFreq: begin
-          freq_d = freq_wr;
-        end
-        IdxM: begin
-          m_d = m_wr;
-        end
-        IdxPeriod: begin
-          period_d = period_wr;
-        end
-        IdxDt: begin
-          dt_d = dt_wr;
-        end
-        default: ;
-      endcase
+    if (wr && sel[SelCtrl]) begin
+      ctrl_en_d = ctrl_en_wr;
+      ctrl_trip_cbc_d = ctrl_trip_cbc_wr;
+      ctrl_safe_lo_d = ctrl_safe_lo_wr;
+      ctrl_pol_d = ctrl_pol_wr;
+      ctrl_lock_d = ctrl_lock_wr;
+      ctrl_fault_clear_d = ctrl_fault_clear_wr;
+    end
+    if (wr && sel[SelFreq]) begin
+      freq_d = freq_wr;
+    end
+    if (wr && sel[SelM]) begin
+      m_d = m_wr;
+    end
+    if (wr && sel[SelPeriod]) begin
+      period_d = period_wr;
+    end
+    if (wr && sel[SelDt]) begin
+      dt_d = dt_wr;
     end
   end
 
@@ -261,41 +347,36 @@ module svpwm_regs #(
       vf_mmax_d = vf_mmax_q;
       mp_d = mp_q;
       presc_d = presc_q;
-      if (wr) begin
-        case (idx)
-          IdxCtrl: begin
-            ctrl_sync_en_d = ctrl_sync_en_wr;
-            ctrl_mode_d = ctrl_mode_wr;
-            ctrl_upd_d = ctrl_upd_wr;
-            ctrl_dpwm_d = ctrl_dpwm_wr;
-            ctrl_adc_trig_d = ctrl_adc_trig_wr;
-          end
-          IdxTheta: begin
-            theta_d = theta_wr;
-          end
-          IdxV1: begin
-            v1_d = v1_wr;
-          end
-          IdxV2: begin
-            v2_d = v2_wr;
-          end
-          IdxVfBoost: begin
-            vf_boost_d = vf_boost_wr;
-          end
-          IdxVfSlope: begin
-            vf_slope_d = vf_slope_wr;
-          end
-          IdxVfMmax: begin
-            vf_mmax_d = vf_mmax_wr;
-          end
-          IdxMp: begin
-            mp_d = mp_wr;
-          end
-          IdxPresc: begin
-            presc_d = presc_wr;
-          end
-          default: ;
-        endcase
+      if (wr && sel[SelCtrl]) begin
+        ctrl_sync_en_d = ctrl_sync_en_wr;
+        ctrl_mode_d = ctrl_mode_wr;
+        ctrl_upd_d = ctrl_upd_wr;
+        ctrl_dpwm_d = ctrl_dpwm_wr;
+        ctrl_adc_trig_d = ctrl_adc_trig_wr;
+      end
+      if (wr && sel[SelTheta]) begin
+        theta_d = theta_wr;
+      end
+      if (wr && sel[SelV1]) begin
+        v1_d = v1_wr;
+      end
+      if (wr && sel[SelV2]) begin
+        v2_d = v2_wr;
+      end
+      if (wr && sel[SelVfBoost]) begin
+        vf_boost_d = vf_boost_wr;
+      end
+      if (wr && sel[SelVfSlope]) begin
+        vf_slope_d = vf_slope_wr;
+      end
+      if (wr && sel[SelVfMmax]) begin
+        vf_mmax_d = vf_mmax_wr;
+      end
+      if (wr && sel[SelMp]) begin
+        mp_d = mp_wr;
+      end
+      if (wr && sel[SelPresc]) begin
+        presc_d = presc_wr;
       end
     end
 
@@ -398,39 +479,45 @@ module svpwm_regs #(
   assign rd_clk_hz = {32'(ClkHz)};
   logic [31:0] rd_features;
   assign rd_features = {31'h0, Compact};
+
+  // the selected word (0 where no register is selected): AND-OR of the one-hot select as a tree
+  // of 4-input LUTs, kept so that synthesis does not chain it: a pair of registers (select and
+  // data bit of each) per LUT, four pairs per LUT, then the OR of the groups
+  (* keep *) logic [31:0] rd_pair0;
+  assign rd_pair0 = ({32{sel[SelId]}} & rd_id) | ({32{sel[SelVersion]}} & rd_version);
+  (* keep *) logic [31:0] rd_pair1;
+  assign rd_pair1 = ({32{sel[SelConfig]}} & rd_config) | ({32{sel[SelCtrl]}} & rd_ctrl);
+  (* keep *) logic [31:0] rd_pair2;
+  assign rd_pair2 = ({32{sel[SelFreq]}} & rd_freq) | ({32{sel[SelM]}} & rd_m);
+  (* keep *) logic [31:0] rd_pair3;
+  assign rd_pair3 = ({32{sel[SelTheta]}} & rd_theta) | ({32{sel[SelV1]}} & rd_v1);
+  (* keep *) logic [31:0] rd_pair4;
+  assign rd_pair4 = ({32{sel[SelV2]}} & rd_v2) | ({32{sel[SelVfBoost]}} & rd_vf_boost);
+  (* keep *) logic [31:0] rd_pair5;
+  assign rd_pair5 = ({32{sel[SelVfSlope]}} & rd_vf_slope) | ({32{sel[SelVfMmax]}} & rd_vf_mmax);
+  (* keep *) logic [31:0] rd_pair6;
+  assign rd_pair6 = ({32{sel[SelPeriod]}} & rd_period) | ({32{sel[SelDt]}} & rd_dt);
+  (* keep *) logic [31:0] rd_pair7;
+  assign rd_pair7 = ({32{sel[SelMp]}} & rd_mp) | ({32{sel[SelPresc]}} & rd_presc);
+  (* keep *) logic [31:0] rd_pair8;
+  assign rd_pair8 = ({32{sel[SelStatus]}} & rd_status) | ({32{sel[SelCarrier]}} & rd_carrier);
+  (* keep *) logic [31:0] rd_pair9;
+  assign rd_pair9 = ({32{sel[SelPeriodAct]}} & rd_period_act) | ({32{sel[SelCmpA]}} & rd_cmp_a);
+  (* keep *) logic [31:0] rd_pair10;
+  assign rd_pair10 = ({32{sel[SelCmpB]}} & rd_cmp_b) | ({32{sel[SelCmpC]}} & rd_cmp_c);
+  (* keep *) logic [31:0] rd_pair11;
+  assign rd_pair11 = ({32{sel[SelClkHz]}} & rd_clk_hz) | ({32{sel[SelFeatures]}} & rd_features);
+  (* keep *) logic [31:0] rd_grp0;
+  assign rd_grp0 = rd_pair0 | rd_pair1 | rd_pair2 | rd_pair3;
+  (* keep *) logic [31:0] rd_grp1;
+  assign rd_grp1 = rd_pair4 | rd_pair5 | rd_pair6 | rd_pair7;
+  (* keep *) logic [31:0] rd_grp2;
+  assign rd_grp2 = rd_pair8 | rd_pair9 | rd_pair10 | rd_pair11;
   logic [31:0] rdata_d, rdata_q;
 
   always_comb begin
     rdata_d = rdata_q;
-    if (rd) begin
-      case (idx)
-        IdxId: rdata_d = rd_id;
-        IdxVersion: rdata_d = rd_version;
-        IdxConfig: rdata_d = rd_config;
-        IdxCtrl: rdata_d = rd_ctrl;
-        IdxFreq: rdata_d = rd_freq;
-        IdxM: rdata_d = rd_m;
-        IdxTheta: rdata_d = rd_theta;
-        IdxV1: rdata_d = rd_v1;
-        IdxV2: rdata_d = rd_v2;
-        IdxVfBoost: rdata_d = rd_vf_boost;
-        IdxVfSlope: rdata_d = rd_vf_slope;
-        IdxVfMmax: rdata_d = rd_vf_mmax;
-        IdxPeriod: rdata_d = rd_period;
-        IdxDt: rdata_d = rd_dt;
-        IdxMp: rdata_d = rd_mp;
-        IdxPresc: rdata_d = rd_presc;
-        IdxStatus: rdata_d = rd_status;
-        IdxCarrier: rdata_d = rd_carrier;
-        IdxPeriodAct: rdata_d = rd_period_act;
-        IdxCmpA: rdata_d = rd_cmp_a;
-        IdxCmpB: rdata_d = rd_cmp_b;
-        IdxCmpC: rdata_d = rd_cmp_c;
-        IdxClkHz: rdata_d = rd_clk_hz;
-        IdxFeatures: rdata_d = rd_features;
-        default: rdata_d = '0;  // no register here
-      endcase
-    end
+    if (rd) rdata_d = rd_grp0 | rd_grp1 | rd_grp2;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin

@@ -360,16 +360,15 @@ def render_sv(regs: list[Reg], size: int) -> str:
         out += ["", f"{ind}always_comb begin"]
         for r, f in group:
             out.append(f"{ind}  {sig(r, f)}_d = " + (f"{f.width}'h0;" if f.kind == "pulse" else f"{sig(r, f)}_q;"))
-        out += [f"{ind}  if (wr) begin", f"{ind}    case (idx)"]
         for r in regs:
             fs = [f for rr, f in group if rr is r]
             if not fs:
                 continue
-            out.append(f"{ind}      Idx{_camel(r.name)}: begin")
+            out.append(f"{ind}  if (wr && sel[Sel{_camel(r.name)}]) begin")
             for f in fs:
-                out.append(f"{ind}        {sig(r, f)}_d = {sig(r, f)}_wr;")
-            out.append(f"{ind}      end")
-        out += [f"{ind}      default: ;", f"{ind}    endcase", f"{ind}  end", f"{ind}end", "",
+                out.append(f"{ind}    {sig(r, f)}_d = {sig(r, f)}_wr;")
+            out.append(f"{ind}  end")
+        out += [f"{ind}end", "",
                 f"{ind}always_ff @(posedge clk_i or negedge rst_ni) begin", f"{ind}  if (!rst_ni) begin"]
         for r, f in group:
             out.append(f"{ind}    {sig(r, f)}_q <= {rst(f)};")
@@ -384,6 +383,11 @@ def render_sv(regs: list[Reg], size: int) -> str:
          "// per clock with req_i; RW fields drive the svpwm_core inputs, RO fields read the core's outputs.",
          "// Parameters:",
          f"//   AddrWidth - byte address width (>= {min_aw}); every address bit is decoded, addr_i[1:0] ignored",
+         "//   AddrEarly - 0: addr_i is decoded in the clock of the request (any bus adapter); 1: addr_i is",
+         "//             decoded every clock into a registered one-hot register select, so that the write",
+         "//             enables and the read multiplexer start at flip-flops (shorter paths); addr_i must",
+         "//             then hold the request's address from the clock before the request (uart_reg_bridge:",
+         "//             its address byte arrives a byte time before its request)",
          ]
     for p, (w, v, users, const) in params.items():
         if p == VARIANT_PARAM and variant:
@@ -398,9 +402,11 @@ def render_sv(regs: list[Reg], size: int) -> str:
     L += ["// Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid",
           "// the clock after a read request and holds until the next read request.",
           "// Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore",
-          "// writes; addresses without a register read 0 and ignore writes; pulse fields read 0.",
+          "// writes; addresses without a register read 0 and ignore writes; pulse fields read 0. AddrEarly = 1:",
+          "// addr_i unchanged from the clock before a request to the request (checked in simulation).",
           "`default_nettype none", "", "module svpwm_regs #(",
-          f"  parameter int AddrWidth = {max(min_aw, 8)}" + ("," if params else "")]
+          f"  parameter int AddrWidth = {max(min_aw, 8)},",
+          "  parameter bit AddrEarly = 1'b0" + ("," if params else "")]
     for i, (p, (w, v, _, _)) in enumerate(params.items()):
         if w == DATA_WIDTH:
             decl = f"parameter int {p} = {v}"
@@ -414,7 +420,7 @@ def render_sv(regs: list[Reg], size: int) -> str:
           "  input  logic                 rst_ni,    // asynchronous reset, active low",
           "  input  logic                 req_i,     // access request (one access per clock)",
           "  input  logic                 we_i,      // 1 write, 0 read",
-          "  input  logic [AddrWidth-1:0] addr_i,    // byte address",
+          "  input  logic [AddrWidth-1:0] addr_i,    // byte address (AddrEarly: from the clock before req_i)",
           "  input  logic [31:0]          wdata_i,   // write data",
           "  input  logic [3:0]           be_i,      // byte enables of wdata_i",
           "  output logic [31:0]          rdata_o,   // read data, the clock after the read request"]
@@ -442,9 +448,31 @@ def render_sv(regs: list[Reg], size: int) -> str:
           "  // word index of each register"]
     for r in regs:
         L.append(f"  localparam logic [AddrWidth-3:0] Idx{_camel(r.name)} = (AddrWidth-2)'({r.addr // 4});")
-    L += ["", "  logic [AddrWidth-3:0] idx;", "  logic                 wr, rd;", "",
-          "  assign idx = addr_i[AddrWidth-1:2];",
+    L += ["", "  // bit of each register in the one-hot register select"]
+    for i, r in enumerate(regs):
+        L.append(f"  localparam int Sel{_camel(r.name)} = {i};")
+    L += [f"  localparam int NumRegs = {len(regs)};",
+          "", "  logic [AddrWidth-3:0] idx;", "  logic                 wr, rd;",
+          "  logic [NumRegs-1:0]   sel_d, sel;  // one-hot register select: of addr_i, of the access",
+          "", "  assign idx = addr_i[AddrWidth-1:2];",
           "  assign wr  = req_i && we_i;", "  assign rd  = req_i && !we_i;", "",
+          "  always_comb begin", "    sel_d = '0;", "    unique case (idx)"]
+    for r in regs:
+        L.append(f"      Idx{_camel(r.name)}: sel_d[Sel{_camel(r.name)}] = 1'b1;")
+    L += ["      default: ;  // no register here: no select bit", "    endcase", "  end", "",
+          "  if (AddrEarly) begin : gen_sel_early",
+          "    // the select of the address of the clock before (= the request's address, the restriction)",
+          "    logic [NumRegs-1:0] sel_q;", "",
+          "    always_ff @(posedge clk_i or negedge rst_ni) begin", "      if (!rst_ni) begin",
+          "        sel_q <= '0;", "      end else begin", "        sel_q <= sel_d;", "      end", "    end",
+          "    assign sel = sel_q;", "",
+          "`ifndef SYNTHESIS",
+          "    // simulation check of the restriction: addr_i changed in the clock of a request",
+          "    always @(posedge clk_i) begin",
+          "      if (req_i && sel_d != sel_q) begin",
+          "        $fatal(1, \"svpwm_regs: AddrEarly = 1, but addr_i changed in the clock of a request (%m)\");",
+          "      end", "    end", "`endif",
+          "  end else begin : gen_sel_now", "    assign sel = sel_d;", "  end", "",
           "  // ---- storage: the value each field takes when its register is written -------------------------"]
     if variant:
         L.append("  // fields of both variants")
@@ -490,11 +518,22 @@ def render_sv(regs: list[Reg], size: int) -> str:
             word = f"{VARIANT_PARAM} ? 32'h0 : {word}"
         L.append(f"  logic [31:0] rd_{r.name.lower()};")
         L.append(f"  assign rd_{r.name.lower()} = {word};")
+    # AND-OR of the one-hot select as a tree of 4-input LUTs: two registers per LUT (select and data
+    # bit of each), four pairs per LUT, then the OR of the groups; the kept nets fix the tree
+    pairs = [regs[i:i + 2] for i in range(0, len(regs), 2)]
+    groups = [list(range(len(pairs)))[i:i + 4] for i in range(0, len(pairs), 4)]
+    L += ["", "  // the selected word (0 where no register is selected): AND-OR of the one-hot select as a tree",
+          "  // of 4-input LUTs, kept so that synthesis does not chain it: a pair of registers (select and",
+          "  // data bit of each) per LUT, four pairs per LUT, then the OR of the groups"]
+    for j, pr in enumerate(pairs):
+        terms = " | ".join(f"({{32{{sel[Sel{_camel(r.name)}]}}}} & rd_{r.name.lower()})" for r in pr)
+        L += [f"  (* keep *) logic [31:0] rd_pair{j};", f"  assign rd_pair{j} = {terms};"]
+    for i, g in enumerate(groups):
+        L += [f"  (* keep *) logic [31:0] rd_grp{i};",
+              f"  assign rd_grp{i} = {' | '.join(f'rd_pair{j}' for j in g)};"]
     L += ["  logic [31:0] rdata_d, rdata_q;", "", "  always_comb begin", "    rdata_d = rdata_q;",
-          "    if (rd) begin", "      case (idx)"]
-    for r in regs:
-        L.append(f"        Idx{_camel(r.name)}: rdata_d = rd_{r.name.lower()};")
-    L += ["        default: rdata_d = '0;  // no register here", "      endcase", "    end", "  end", "",
+          f"    if (rd) rdata_d = {' | '.join(f'rd_grp{i}' for i in range(len(groups)))};",
+          "  end", "",
           "  always_ff @(posedge clk_i or negedge rst_ni) begin", "    if (!rst_ni) begin",
           "      rdata_q <= '0;", "    end else begin", "      rdata_q <= rdata_d;", "    end", "  end", "",
           "  assign rdata_o = rdata_q;"]

@@ -77,6 +77,7 @@ module svpwm_ice40_sys #(
 
   svpwm_mmio #(
     .AddrWidth (8),
+    .AddrEarly (1'b1),              // the bridge's address byte comes a byte time before its request
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),

@@ -16,6 +16,13 @@
 //   TimeoutBits - inter-byte timeout in bit times (1000 = 8.7 ms at 115200 baud)
 // Latency: write: req_o the clock after the checksum byte, the 'K' reply starts with it. Read: req_o
 //   the clock after the checksum byte, rdata_i sampled two clocks later, then the reply.
+//   addr_o holds the request's address from the frame's address byte on, a byte time before req_o
+//   (svpwm_regs AddrEarly = 1 relies on it).
+// Timing: what the frame machine needs of a received byte (command?, checksum good?, the new sum) and
+//   the timeout compare are registered a clock ahead (the received byte is stable ClksPerBit clocks
+//   before uart_rx's valid_o; the timeout count rises by one per clock); uart_tx's ready is a flip-flop,
+//   acted on a clock later (go_q: each byte of a read reply starts a clock after the transmitter became
+//   ready); the reply has its own sum (rsum_q): no counter or compare feeds the frame state machine.
 // Restrictions: the register port must accept a request in every clock (no wait states) and hold
 //   rdata_i from the clock after a read request until the next request (svpwm_regs does).
 `default_nettype none
@@ -72,55 +79,77 @@ module uart_reg_bridge #(
   state_e        st_d, st_q;
   logic          is_wr_d, is_wr_q;    // the frame is a write
   logic [1:0]    n_d, n_q;            // data byte index
-  logic [7:0]    nsum_d, nsum_q;      // minus the byte sum so far of the frame / of the reply
+  logic [7:0]    nsum_d, nsum_q;      // minus the byte sum so far of the frame
+  logic [7:0]    rsum_d, rsum_q;      // minus the byte sum so far of the read reply
   logic [31:0]   data_d, data_q;      // write data, later the read reply
   logic [2:0]    left_d, left_q;      // reply bytes still to send
+  logic          go_d, go_q;          // SReply: send the next reply byte (or end) now
   logic [TW-1:0] to_d, to_q;          // clocks since the last byte of the frame
+  logic          to_end_d, to_end_q;  // to_q == TimeoutClks
+  // of the received byte, a clock ahead: valid with rx_valid (rx_data is stable ClksPerBit clocks before
+  // it; nsum_q changes only with a received byte, never in the clock before one)
+  logic          sum_ok_d, sum_ok_q;  // rx_data == nsum_q: the checksum byte is good
+  logic          cmd_d, cmd_q;        // rx_data is a command byte ('W' or 'R')
+  logic          cmd_wr_d, cmd_wr_q;  // rx_data is 'W'
+  logic [7:0]    nsum_first_d, nsum_first_q;  // minus rx_data: the sum of a command byte
+  logic [7:0]    nsum_rx_d, nsum_rx_q;        // nsum_q minus rx_data
   logic [7:0]    addr_d, addr_q;
   logic          req_d, req_q, we_d, we_q;
 
   logic       in_frame;               // between a command byte and the checksum byte
-  logic [7:0] nsum_next;              // nsum minus the byte received now (a reply: the byte sent now)
+  logic       to_run;                 // in a frame, no byte and no framing error this clock
+  logic [7:0] rsum_next;              // rsum minus the reply byte sent now
   assign in_frame  = (st_q == SAddr) || (st_q == SData) || (st_q == SChk);
-  // one subtractor for both directions: a frame is good when its checksum byte equals -(sum before it),
-  // and a reply's checksum byte is -(sum of its data bytes)
-  assign nsum_next = ((st_q == SIdle) ? 8'd0 : nsum_q) - ((st_q == SReply) ? data_q[7:0] : rx_data);
+  // a frame is good when its checksum byte equals -(sum before it), and a reply's checksum byte is
+  // -(sum of its data bytes)
+  assign rsum_next = rsum_q - data_q[7:0];
+  assign to_run    = in_frame && !rx_valid && !rx_ferr;
 
   always_comb begin
-    st_d       = st_q;
-    is_wr_d    = is_wr_q;
-    n_d        = n_q;
-    nsum_d     = nsum_q;
-    data_d     = data_q;
-    left_d     = left_q;
-    to_d       = (in_frame && !rx_valid) ? to_q + 1'b1 : '0;
-    addr_d     = addr_q;
-    req_d      = 1'b0;
-    we_d       = 1'b0;
-    tx_valid_d = 1'b0;
-    tx_data_d  = tx_data_q;
+    st_d         = st_q;
+    is_wr_d      = is_wr_q;
+    n_d          = n_q;
+    nsum_d       = nsum_q;
+    rsum_d       = rsum_q;
+    data_d       = data_q;
+    left_d       = left_q;
+    // counts to TimeoutClks while the frame waits, then 0 (to_end_q drops the frame)
+    to_d         = (to_run && !to_end_q) ? to_q + 1'b1 : '0;
+    to_end_d     = to_run && !to_end_q && (to_q == TW'(TimeoutClks - 1));
+    sum_ok_d     = (rx_data == nsum_q);
+    cmd_d        = (rx_data == CmdWrite) || (rx_data == CmdRead);
+    cmd_wr_d     = (rx_data == CmdWrite);
+    nsum_first_d = 8'd0 - rx_data;
+    nsum_rx_d    = nsum_q - rx_data;
+    // SReply: uart_tx is ready for the next byte; acted on a clock later (go_q)
+    go_d         = (st_q == SReply) && tx_ready && !tx_valid_q && !go_q;
+    addr_d       = addr_q;
+    req_d        = 1'b0;
+    we_d         = 1'b0;
+    tx_valid_d   = 1'b0;
+    tx_data_d    = tx_data_q;
 
     unique case (st_q)
-      SIdle: if (rx_valid && (rx_data == CmdWrite || rx_data == CmdRead)) begin
+      SIdle: if (rx_valid && cmd_q) begin
         st_d    = SAddr;
-        is_wr_d = (rx_data == CmdWrite);
-        nsum_d  = nsum_next;
+        is_wr_d = cmd_wr_q;
+        nsum_d  = nsum_first_q;
       end
       SAddr: if (rx_valid) begin
         addr_d = rx_data;
-        nsum_d = nsum_next;
+        nsum_d = nsum_rx_q;
         n_d    = '0;
         if (is_wr_q) st_d = SData;               // (not ?: -- Icarus 11 wants an enum cast there)
         else         st_d = SChk;
       end
       SData: if (rx_valid) begin
         data_d = {rx_data, data_q[31:8]};        // LSB first
-        nsum_d = nsum_next;
+        nsum_d = nsum_rx_q;
         n_d    = n_q + 1'b1;
         if (n_q == 2'd3) st_d = SChk;
       end
       SChk: if (rx_valid) begin
-        if (rx_data != nsum_q) begin             // bad checksum: answer NAK, touch nothing
+        if (!sum_ok_q) begin                     // bad checksum: answer NAK, touch nothing
           st_d       = SReply;
           tx_data_d  = RspNak;
           tx_valid_d = 1'b1;
@@ -140,60 +169,74 @@ module uart_reg_bridge #(
       SRead: if (!req_q) begin                   // the clock after the request: rdata_i valid
         data_d = rdata_i;
         left_d = 3'd5;                           // 4 data bytes + chk
-        nsum_d = '0;
+        rsum_d = '0;
         st_d   = SReply;
       end
-      default: begin                             // SReply
-        if (!tx_valid_q && tx_ready) begin
-          if (left_q == 3'd0) st_d = SIdle;
-          else begin
-            tx_valid_d = 1'b1;
-            left_d     = left_q - 1'b1;
-            if (left_q == 3'd1) tx_data_d = nsum_q;
-            else begin
-              tx_data_d = data_q[7:0];
-              nsum_d    = nsum_next;
-              data_d    = {8'd0, data_q[31:8]};
-            end
-          end
-        end
-      end
+      default: ;                                 // SReply: a byte with every go_q, below
     endcase
 
-    // truncated frame (timeout) or a UART framing error mid-frame: drop the frame
-    if (in_frame && !rx_valid && (rx_ferr || to_q == TW'(TimeoutClks))) begin
-      st_d = SIdle;
-      to_d = '0;
+    // SReply, the clock after go_d (go_q is set in SReply only, which it leaves only here)
+    if (go_q) begin
+      if (left_q == 3'd0) st_d = SIdle;
+      else begin
+        tx_valid_d = 1'b1;
+        left_d     = left_q - 1'b1;
+        if (left_q == 3'd1) tx_data_d = rsum_q;
+        else begin
+          tx_data_d = data_q[7:0];
+          rsum_d    = rsum_next;
+          data_d    = {8'd0, data_q[31:8]};
+        end
+      end
     end
+
+    // truncated frame (timeout) or a UART framing error mid-frame: drop the frame
+    if (in_frame && !rx_valid && (rx_ferr || to_end_q)) st_d = SIdle;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      st_q       <= SIdle;
-      is_wr_q    <= 1'b0;
-      n_q        <= '0;
-      nsum_q     <= '0;
-      data_q     <= '0;
-      left_q     <= '0;
-      to_q       <= '0;
-      addr_q     <= '0;
-      req_q      <= 1'b0;
-      we_q       <= 1'b0;
-      tx_valid_q <= 1'b0;
-      tx_data_q  <= '0;
+      st_q         <= SIdle;
+      is_wr_q      <= 1'b0;
+      n_q          <= '0;
+      nsum_q       <= '0;
+      rsum_q       <= '0;
+      data_q       <= '0;
+      left_q       <= '0;
+      go_q         <= 1'b0;
+      to_q         <= '0;
+      to_end_q     <= 1'b0;
+      sum_ok_q     <= 1'b0;
+      cmd_q        <= 1'b0;
+      cmd_wr_q     <= 1'b0;
+      nsum_first_q <= '0;
+      nsum_rx_q    <= '0;
+      addr_q       <= '0;
+      req_q        <= 1'b0;
+      we_q         <= 1'b0;
+      tx_valid_q   <= 1'b0;
+      tx_data_q    <= '0;
     end else begin
-      st_q       <= st_d;
-      is_wr_q    <= is_wr_d;
-      n_q        <= n_d;
-      nsum_q     <= nsum_d;
-      data_q     <= data_d;
-      left_q     <= left_d;
-      to_q       <= to_d;
-      addr_q     <= addr_d;
-      req_q      <= req_d;
-      we_q       <= we_d;
-      tx_valid_q <= tx_valid_d;
-      tx_data_q  <= tx_data_d;
+      st_q         <= st_d;
+      is_wr_q      <= is_wr_d;
+      n_q          <= n_d;
+      nsum_q       <= nsum_d;
+      rsum_q       <= rsum_d;
+      data_q       <= data_d;
+      left_q       <= left_d;
+      go_q         <= go_d;
+      to_q         <= to_d;
+      to_end_q     <= to_end_d;
+      sum_ok_q     <= sum_ok_d;
+      cmd_q        <= cmd_d;
+      cmd_wr_q     <= cmd_wr_d;
+      nsum_first_q <= nsum_first_d;
+      nsum_rx_q    <= nsum_rx_d;
+      addr_q       <= addr_d;
+      req_q        <= req_d;
+      we_q         <= we_d;
+      tx_valid_q   <= tx_valid_d;
+      tx_data_q    <= tx_data_d;
     end
   end
 

@@ -4,6 +4,9 @@
 // bit; a low stop bit pulses frame_err_o instead (the byte is dropped), and the receiver then waits for
 // the line to go high before it looks for a start bit (the rest of a low stop bit or a break is none).
 // Parameters: ClksPerBit - clock cycles per bit (48 MHz / 115200 = 417), >= 4.
+// Timing: data_o, valid_o and frame_err_o are flip-flops; data_o is stable from the last data bit,
+// ClksPerBit clocks before valid_o. The bit timer counts down to -1 (its sign bit ends the wait), so no
+// wide compare sits between the timer and the enables.
 `default_nettype none
 
 module uart_rx #(
@@ -16,59 +19,88 @@ module uart_rx #(
   output logic       valid_o,       // one-clock pulse: data_o is a new byte
   output logic       frame_err_o    // one-clock pulse: stop bit was low (byte dropped)
 );
-  localparam int CW = $clog2(ClksPerBit + 1);
+  localparam int CW = $clog2(ClksPerBit) + 1;   // ClksPerBit - 2 and a sign bit
 
   if (ClksPerBit < 4) begin : gen_bad
     initial $fatal(1, "uart_rx: ClksPerBit must be >= 4, got %0d", ClksPerBit);
   end
 
-  logic [2:0]    sync_q;            // [2] is the synchronised line
-  logic [2:0]    st_q;              // 0 idle, 1 start, 2 data, 3 stop, 4 after a framing error
-  logic [CW-1:0] cnt_q;
-  logic [2:0]    bit_q;
-  logic [7:0]    sh_q;              // shift register; holds the byte from its stop bit to the next start
+  // RxWait: after a framing error, until the line is high
+  typedef enum logic [2:0] {RxIdle, RxStart, RxData, RxStop, RxWait} rx_state_e;
+  rx_state_e     st_d, st_q;
+  logic [2:0]    sync_d, sync_q;    // [2] is the synchronised line
+  logic [CW-1:0] cnt_d, cnt_q;      // clocks to wait minus 2: the wait ends at -1 (cnt_q[CW-1])
+  logic [2:0]    bit_d, bit_q;
+  logic [7:0]    sh_d, sh_q;        // shift register; holds the byte from its stop bit to the next start
+  logic          valid_d, valid_q, ferr_d, ferr_q;
+  logic          line, done;
+
+  assign line = sync_q[2];
+  assign done = cnt_q[CW-1];
+
+  always_comb begin
+    st_d    = st_q;
+    sync_d  = {sync_q[1:0], rx_i};
+    cnt_d   = cnt_q - 1'b1;           // runs freely: loaded before every wait
+    bit_d   = bit_q;
+    sh_d    = sh_q;
+    valid_d = 1'b0;
+    ferr_d  = 1'b0;
+    unique case (st_q)
+      RxIdle: if (!line) begin                              // falling edge: start bit
+        st_d  = RxStart;
+        cnt_d = CW'(ClksPerBit / 2 - 2);
+      end
+      RxStart: if (done) begin
+        if (line) st_d = RxIdle;                            // glitch, not a start bit
+        else begin
+          st_d  = RxData;
+          cnt_d = CW'(ClksPerBit - 2);
+          bit_d = '0;
+        end
+      end
+      RxData: if (done) begin
+        sh_d  = {line, sh_q[7:1]};                          // LSB first
+        cnt_d = CW'(ClksPerBit - 2);
+        bit_d = bit_q + 1'b1;
+        if (bit_q == 3'd7) st_d = RxStop;
+      end
+      RxStop: if (done) begin
+        if (line) begin                                     // good stop bit: idle in its middle
+          st_d    = RxIdle;
+          valid_d = 1'b1;
+        end else begin                                      // stop bit low: wait for the line to go
+          st_d   = RxWait;                                  // high, so the rest of the low stop bit
+          ferr_d = 1'b1;                                    // (or a break) is no start bit
+        end
+      end
+      default: if (line) st_d = RxIdle;                     // RxWait
+    endcase
+  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      sync_q      <= '1;
-      st_q        <= '0;
-      cnt_q       <= '0;
-      bit_q       <= '0;
-      sh_q        <= '0;
-      valid_o     <= 1'b0;
-      frame_err_o <= 1'b0;
+      st_q    <= RxIdle;
+      sync_q  <= '1;
+      cnt_q   <= '0;
+      bit_q   <= '0;
+      sh_q    <= '0;
+      valid_q <= 1'b0;
+      ferr_q  <= 1'b0;
     end else begin
-      sync_q      <= {sync_q[1:0], rx_i};
-      valid_o     <= 1'b0;
-      frame_err_o <= 1'b0;
-      unique case (st_q)
-        3'd0: if (!sync_q[2]) begin                         // falling edge: start bit
-          st_q  <= 3'd1;
-          cnt_q <= CW'(ClksPerBit / 2 - 1);
-        end
-        3'd1: if (cnt_q != '0) cnt_q <= cnt_q - 1'b1;
-              else if (sync_q[2]) st_q <= 3'd0;             // glitch, not a start bit
-              else begin st_q <= 3'd2; cnt_q <= CW'(ClksPerBit - 1); bit_q <= '0; end
-        3'd2: if (cnt_q != '0) cnt_q <= cnt_q - 1'b1;
-              else begin
-                sh_q  <= {sync_q[2], sh_q[7:1]};            // LSB first
-                cnt_q <= CW'(ClksPerBit - 1);
-                bit_q <= bit_q + 1'b1;
-                if (bit_q == 3'd7) st_q <= 3'd3;
-              end
-        3'd3: if (cnt_q != '0) cnt_q <= cnt_q - 1'b1;
-              else if (sync_q[2]) begin                     // good stop bit: idle in its middle
-                st_q    <= 3'd0;
-                valid_o <= 1'b1;
-              end else begin                                // stop bit low: wait for the line to go
-                st_q        <= 3'd4;                        // high, so the rest of the low stop bit
-                frame_err_o <= 1'b1;                        // (or a break) is no start bit
-              end
-        default: if (sync_q[2]) st_q <= 3'd0;
-      endcase
+      st_q    <= st_d;
+      sync_q  <= sync_d;
+      cnt_q   <= cnt_d;
+      bit_q   <= bit_d;
+      sh_q    <= sh_d;
+      valid_q <= valid_d;
+      ferr_q  <= ferr_d;
     end
   end
-  assign data_o = sh_q;                                     // unchanged until the next data bit
+
+  assign data_o      = sh_q;                                // unchanged until the next data bit
+  assign valid_o     = valid_q;
+  assign frame_err_o = ferr_q;
 endmodule
 
 `default_nettype wire

@@ -10,7 +10,7 @@
 //               before every request (uart_reg_bridge): the register select is then decoded a clock
 //               ahead, registered (shorter paths); 0 (default) for the bus adapters
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
-//               MinPeriod defaults to the core's default of the variant (48, compact 230)
+//               MinPeriod defaults to the core's default of the variant (svpwm_pkg::min_period: 251, compact 230)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
 //   Compact   - 1: the compact variant (small FPGAs): svpwm_core's compact core (FREQ mode, continuous
 //               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses

@@ -97,6 +97,13 @@ def ensure_verilator_env() -> None:
     if ccache and "OBJCACHE" not in os.environ:
         os.environ["OBJCACHE"] = ccache
         os.environ.setdefault("CCACHE_DIR", str(BUILD / "ccache"))
+    # The wheel's verilated.mk leaves CFG_CXXFLAGS_PCH_I (GCC: -include) empty, so a model whose C++ is
+    # split into several files (parallel build with a precompiled header) fails to compile ("Vtop__pch.h.fast:
+    # linker input file not found"); the make the runner starts gets it as a command-line variable through
+    # MAKEFLAGS.
+    flags = os.environ.get("MAKEFLAGS", "")
+    if "CFG_CXXFLAGS_PCH_I=" not in flags:
+        os.environ["MAKEFLAGS"] = (flags + (" " if " -- " in flags else " -- ") + "CFG_CXXFLAGS_PCH_I=-include").strip()
 
 
 def _ensure_sys_path(dirs: Sequence[Path]) -> None:

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // icebreaker_top: svpwm on the iCEBreaker (iCE40UP5K-SG48). 12 MHz oscillator -> SB_PLL40_PAD -> core
-// clock (default 24.000 MHz: the core's Fmax on the UP5K is about 30 MHz, see fpga/ice40/README.md), reset synchroniser (PLL lock and the user button BTN_N, async assert /
+// clock (default 48.000 MHz, timing met: fpga/ice40/README.md), reset synchroniser (PLL lock and the user button BTN_N, async assert /
 // sync release), and svpwm_ice40_sys: UART register bridge at 115200 baud on the FTDI channel B pins
 // in front of the generated register map (docs/registers.md), six gates and an active-low fault input
 // on PMOD 1A, run / fault (tripped) on the green / red LEDs. Pins: icebreaker.pcf.
@@ -16,12 +16,11 @@ module icebreaker_top #(
   // ---- board clock: change these five together ------------------------------------------------
   // `yowasp-icepll -i 12 -o <MHz>` prints DIVR, DIVF, DIVQ and FILTER_RANGE for a new frequency; ClkHz
   // must be the frequency they give (SIMPLE feedback): 12 MHz * (PllDivf + 1) / ((PllDivr + 1) * 2^PllDivq).
-  // 24 MHz: DIVR 0, DIVF 63, DIVQ 5, FILTER_RANGE 1 (VCO 768 MHz, exact); 48 MHz: DIVQ 4 (the core does
-  // not reach 48 MHz on the UP5K yet).
-  parameter int         ClkHz          = 24_000_000,
+  // 48 MHz: DIVR 0, DIVF 63, DIVQ 4, FILTER_RANGE 1 (VCO 768 MHz, exact); 24 MHz: DIVQ 5.
+  parameter int         ClkHz          = 48_000_000,
   parameter int         PllDivr        = 0,
   parameter int         PllDivf        = 63,
-  parameter int         PllDivq        = 5,
+  parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
   parameter int         MinPeriod      = svpwm_pkg::min_period(0),

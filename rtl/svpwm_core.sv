@@ -125,12 +125,13 @@ module svpwm_core #(
     initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
   end
 
-  // ---- run: a register, en_i of the clock before (the modulator starts StartDelay = 1 clock after en_i
-  // rises; en_i low still turns the gates off on the next clock: the legs and poles read en_i too), but
-  // not in the first ArmClocks (4) clocks after reset, so that the configuration registers, the lowest
-  // legal period, the clamped period and then the idle loads (period clamped for the dead time,
-  // frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse (another
-  // core's sync_o: the clock before its valley). Every enable of the core reads run from a flip-flop.
+  // ---- run: a register, en_i of the clock before (the modulator starts one clock after en_i rises:
+  // fixed.START_DELAY; en_i low still turns the gates off on the next clock: the legs and poles read
+  // en_i), but not in the first ArmClocks (4) clocks after reset, so that the configuration registers,
+  // the lowest legal period, the clamped period and then the idle loads (period clamped for the dead
+  // time, frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse
+  // (another core's sync_o: the clock before its valley). Every enable of the core reads run from a
+  // flip-flop.
   logic [svpwm_pkg::ArmClocks-2:0] armed_q;
   logic       run_d, run;
 

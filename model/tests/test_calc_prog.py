@@ -135,6 +135,18 @@ def test_mb_acc_unused(compact, dsp):
     assert any(g["mlb"] for g in words)                        # (the decode sees the loads at all)
 
 
+@pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
+def test_idle_word_equals_word_1(dsp):
+    """The engine's programs (Compact = 0) have the same packed word at addresses 0 (the idle word) and 1 (step
+    1: empty, its next fields are step 1's selections too). svpwm_calc's step counter then may idle at 0 or 1
+    without a difference, which is why scripts/mutate_equivalent.json lists the mutants that make pc_d 1
+    when idle or after an abort as equivalent; a generator change that makes the two words differ fails this
+    test (and those mutants must then be killed, not listed)."""
+    words = cp.program(False, dsp).encode()
+    assert words[0] == words[1], (hex(words[0]), hex(words[1]))
+    assert len(set(words)) > 10                                # (the program is not all one word)
+
+
 def test_misuse_is_refused():
     """The builder's packing refuses fields that share bits."""
     with pytest.raises(AssertionError):

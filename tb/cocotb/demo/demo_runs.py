@@ -249,7 +249,7 @@ async def run_speed_loop(dut, pt: dict) -> None:
     upd_cycles: list = []
     task_upd = cocotb.start_soon(tb._updates(upd_cycles))
     await FallingEdge(d.clk)
-    rtl = RtlRun(valley=[0])
+    rtl = RtlRun(valley=[fixed.START_DELAY])     # the first valley: the core's first running clock
     k_mon = 0
     t_sim0 = time.perf_counter()
     bar = tqdm(total=n_per, desc="speed loop (RTL in the loop, Verilator)", unit="period", file=sys.stderr,

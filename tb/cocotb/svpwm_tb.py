@@ -46,6 +46,7 @@ class Clock(NamedTuple):
     adc: int
     carrier: int
     tripped: int
+    fault: int
 
 
 def _diff(name: str, got: list, exp: list) -> str:
@@ -135,7 +136,7 @@ class CoreTB:
         d.trace_i.value = 1
         await Timer(n * CLK_NS + 2, "ns")
         d.trace_i.value = 0
-        rows = [Clock(*(int(x, 16) for x in r[2:8])) for r in self._rec_lines()
+        rows = [Clock(*(int(x, 16) for x in r[2:9])) for r in self._rec_lines()
                 if r[0] == "C" and int(r[1]) - 1 > t_start]
         assert len(rows) >= n, f"per_clock: {len(rows)} clocks recorded, {n} expected (trace_i, +svpwm_rec?)"
         return rows[:n]

@@ -98,7 +98,8 @@ async def fields_reach_core(dut):
 @cocotb.test()
 async def status_from_core(dut):
     """RO registers read the core's outputs: running, carrier, active period and compare values,
-    period clamp, lock, fault / trip / fault_clear."""
+    period clamp (below MinPeriod; with CntWidth < 16 also PERIOD = 0x8000, above the core's range: runs
+    2^CntWidth - 1, flagged), lock, fault / trip / fault_clear."""
     tb = TB(dut)
     await tb.reset()
     c = tb.core
@@ -128,6 +129,12 @@ async def status_from_core(dut):
     await clock_cycles(dut.clk, 3 * 200)
     assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["period_clamp"] == 1
     assert await tb.bus.read(R.PERIOD_ACT.addr) == int(c.period_o.value) >= MIN_PERIOD
+    w = len(c.carrier_o)
+    if w < 16:                                         # PERIOD's top bit alone above a narrower core's range:
+        await tb.wr(R.PERIOD, period=1 << 15)          # the longest period 2^CntWidth - 1, flagged
+        await clock_cycles(dut.clk, 4 * MIN_PERIOD + 8)
+        assert await tb.bus.read(R.PERIOD_ACT.addr) == (1 << w) - 1
+        assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["period_clamp"] == 1
     dut.fault.value = 1                                # latched trip, cleared by CTRL.fault_clear
     await clock_cycles(dut.clk, 4)
     s = await tb.rd(R.STATUS)

@@ -234,12 +234,15 @@ async def full_only_inputs(dut):
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
     core ignores V/f and the prescaler and runs the same steps in FREQ mode):
+    * in reset every status output and every gate is 0 (valid configuration, en_i high);
     * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
       is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
     * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
     * adc_trig_o == (valley_o & adc_trig_i[0]) | (peak_o & adc_trig_i[1]) on every clock, each code; carrier_o
       0 at the valleys, P at the peaks, steps of one;
     * period_i and dt_i changed between a valley's sample and the valley are taken only at the next valley;
+    * fault_o is fault_i through the 2-flop synchroniser: high from the second clock edge after fault_i
+      rises, low from the second edge after it falls;
     * a latched trip holds through valleys until fault_clear_i (then releases in the next clock); a
       cycle-by-cycle trip holds until the first valley after the fault and releases in the clock after it;
     * the pin polarity is taken while en_i is low; lock_i freezes polarity and dead time: locked_o, the
@@ -255,6 +258,10 @@ async def config_and_safety(dut):
     dut.rst_ni.value = 0
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
+    # in reset (valid configuration, en_i high): every status output and every gate is at its reset value 0
+    status = {n: int(getattr(dut, n).value) for n in ("running_o", "update_o", "sat_o", "cfg_err_o",
+              "period_clamp_o", "freq_clamp_o", "fault_o", "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")}
+    assert not any(status.values()), f"outputs in reset: {status}"
     dut.rst_ni.value = 1
     got = [(k.valley, k.period) for k in await tb.per_clock(fixed.ARM_CLOCKS + 2)]
     valleys = [v for v, _ in got]
@@ -290,15 +297,17 @@ async def config_and_safety(dut):
     # ---- latched trip: holds through two valleys, released by fault_clear_i in the next clock
     await FallingEdge(dut.clk)
     dut.fault_i.value = 1
-    await ReadOnly()
+    await Timer(1, "ns")
     assert int(dut.tripped_o.value) == 1 and int(dut.gate_hi_o.value) == 0 and int(dut.gate_lo_o.value) == 0
-    await FallingEdge(dut.clk)
-    await clock_cycles(dut.clk, 3)
+    # fault_o: fault_i through the 2-flop synchroniser, high from the second clock edge on
+    got = [(k.fault, k.tripped) for k in await tb.per_clock(5)]
+    assert got == [(0, 1)] + [(1, 1)] * 4, f"fault_o, tripped_o in the 5 clocks after fault_i rose: {got}"
     await FallingEdge(dut.clk)
     dut.fault_i.value = 0
-    got = [(k.tripped, k.valley) for k in await tb.per_clock(4 * P + 8)]
-    assert sum(v for _, v in got) >= 2 and all(t for t, _ in got), \
-        f"latched trip released without fault_clear_i (clock {[t for t, _ in got].index(0)} after the fault)"
+    got = [(k.tripped, k.valley, k.fault) for k in await tb.per_clock(4 * P + 8)]
+    assert [f for _, _, f in got[:3]] == [1, 0, 0], f"fault_o after fault_i fell: {[f for _, _, f in got[:3]]}"
+    assert sum(v for _, v, _ in got) >= 2 and all(t for t, _, _ in got), \
+        f"latched trip released without fault_clear_i (clock {[t for t, _, _ in got].index(0)} after the fault)"
     await FallingEdge(dut.clk)
     dut.fault_clear_i.value = 1
     await FallingEdge(dut.clk)

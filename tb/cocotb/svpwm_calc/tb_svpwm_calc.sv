@@ -50,7 +50,7 @@ module tb_svpwm_calc #(
   input  logic [CntWidth-1:0]   period_i,
   input  logic [DtWidth:0]      thr_i,
   input  logic                  play_i,       // rising: run the player (stim_file_i, stim_n_i)
-  input  logic [8*128-1:0]      stim_file_i,  // file name (ASCII, right aligned)
+  input  logic [8*64-1:0]       stim_file_i,  // file name (ASCII, right aligned, <= 64 characters)
   input  logic [31:0]           stim_n_i,     // records in the file
   output logic                  clk,
   output logic                  busy_o,

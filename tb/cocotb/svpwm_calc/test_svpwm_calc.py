@@ -120,6 +120,7 @@ REC_W = CTL_W + 3 * PIN_W
 MAX_VEC = 65600
 PIN_FIELDS = ((0, 3), (3, 3), (6, 16), (22, 16), (38, 16), (54, 16), (70, 16), (86, 16), (102, 16), (118, 16),
               (134, 16), (150, 2), (152, 16), (168, 16))     # mode .. thr in Vec's order (fabs for freq)
+assert PIN_FIELDS[-1][0] + PIN_FIELDS[-1][1] <= PIN_W
 CTL_FIELDS = {"pre": (0, 2), "ak": (2, 9), "gap": (11, 2), "ast": (13, 1), "asec": (14, 3), "aang": (17, 16),
               "mid": (33, 1), "mk": (34, 9), "mst": (43, 1), "msec": (44, 3), "mang": (47, 16), "ssec": (63, 3),
               "sang": (66, 16), "esec": (82, 3), "ea": (85, 16), "eb": (101, 16), "ec": (117, 16),
@@ -304,13 +305,12 @@ class CalcTB:
         await FallingEdge(dut.clk)                              # no done_o on its way
         assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
 
-    def pins(self, v: Vec) -> int:
-        """The calculator's input word of `v` in a player record (tb_svpwm_calc.sv: PinW)."""
-        word = 0
-        for val, (off, w) in zip((v.mode, v.sector, v.angle, v.theta, v.m, fabs(v.freq), v.v1, v.v2, v.boost,
-                                  v.slope, v.mmax, v.dpwm, v.period, v.thr), PIN_FIELDS):
-            word |= (val & ((1 << w) - 1)) << off
-        return word
+    @staticmethod
+    def pins(v: Vec) -> int:
+        """The calculator's input word of `v` in a player record (tb_svpwm_calc.sv: PinW; PIN_FIELDS)."""
+        return (v.mode | v.sector << 3 | v.angle << 6 | v.theta << 22 | v.m << 38 | fabs(v.freq) << 54
+                | (v.v1 & 0xFFFF) << 70 | (v.v2 & 0xFFFF) << 86 | v.boost << 102 | v.slope << 118 | v.mmax << 134
+                | v.dpwm << 150 | v.period << 152 | v.thr << 168)
 
     def record(self, i: int, v: Vec, exp: tuple[int, ...], rng: random.Random) -> tuple[int, dict]:
         """Vector i's player record (tb_svpwm_calc.sv: CtlW, the vector, junk A, junk B), its schedule drawn
@@ -347,7 +347,8 @@ class CalcTB:
             off, w = CTL_FIELDS[k]
             assert 0 <= val < (1 << w), (k, val)
             word |= val << off
-        word |= (self.pins(v) | self.pins(junk_a) << PIN_W | self.pins(junk_b) << 2 * PIN_W) << CTL_W
+        word |= (self.pins(v) | (self.pins(junk_a) << PIN_W if ctl.get("pre") else 0)
+                 | (self.pins(junk_b) << 2 * PIN_W if ctl.get("pre") == 1 else 0)) << CTL_W
         return word, ctl
 
     async def run_vectors(self, vecs: list[Vec], rng: random.Random, name: str) -> None:
@@ -362,6 +363,7 @@ class CalcTB:
         f = Path(f"calc_stim_{os.getpid()}_{self.nplay}.hex")     # cwd: the item's own sim directory
         f.write_text("".join(f"{w:0{REC_W // 4}x}\n" for w, _ in recs))
         t1 = time.perf_counter()
+        assert len(str(f)) <= len(dut.stim_file_i) // 8, f
         dut.stim_file_i.value = int.from_bytes(str(f).encode(), "big")
         dut.stim_n_i.value = len(vecs)
         end = int(dut.play_end_o.value)

@@ -77,7 +77,7 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
 * Icarus's cost: ~22 us per clock of the busy calculator (Compact = 0), the simulator's evaluation of the RTL
   itself (the same without cocotb, with the harness or the bare svpwm_calc; idle: ~4 us): vvp's behavioural
   processes of svpwm_calc (~27 per clock), not the ROMs, the harness's checker or Python. Verilator:
-  ~0.4 us per clock without cocotb, ~0.7 with it.
+  ~0.4 us per clock without cocotb, ~0.5 with it (the player; the per-vector Python loop it replaced: ~0.6).
 
 * `serial_vectors` (build full_serial only: Compact = 0 with Dsp = 0, the serial multiplier no core builds):
   every CALC_SERIAL_STRIDE-th vector of every directed set + CALC_SERIAL_NRAND random vectors; LATENCY is then

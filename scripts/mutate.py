@@ -289,8 +289,10 @@ def compiles(d: Path) -> bool:
 def run_tests(d: Path, sel: list[str], timeout: float, log: Path) -> tuple[bool, str]:
     # a timeout counts as a kill (a mutant that hangs the design); the report says "timeout"
     """Run the pytest selection on the mutant; returns (all passed, the first failing test or '')."""
+    # (CALC_DIRECTED_STRIDE=1: test_svpwm_calc's directed sets in full on Icarus as well, as `make sim` runs
+    # them on Verilator; make sim runs a complete subset of the largest on Icarus)
     env = dict(os.environ, SVPWM_SIMS="icarus", SVPWM_RTL_DIR=str(d / "rtl"), SVPWM_SIM_BUILD=str(d / "sim"),
-               PYTHONPATH=f"{REPO / 'model'}:{REPO / 'tb/cocotb'}")
+               PYTHONPATH=f"{REPO / 'model'}:{REPO / 'tb/cocotb'}", CALC_DIRECTED_STRIDE="1")
     cmd = [sys.executable, "-m", "pytest", "-x", "-q", "-p", "no:cacheprovider", "-p", "no:xdist",
            "--durations=0", "-o", "addopts=", *sel]
     # own process group: on a timeout the simulator under pytest is ended with it (no orphan left running)

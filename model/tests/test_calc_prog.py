@@ -147,6 +147,24 @@ def test_idle_word_equals_word_1(dsp):
     assert len(set(words)) > 10                                # (the program is not all one word)
 
 
+@pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
+def test_input_operand_codes(dsp):
+    """Every word of the engine's programs (Compact = 0) whose operand is an input (src = AS_IN) has an input
+    code 0..9: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
+    product shift) only reaches in_q when the next step does not read it, which is why
+    scripts/mutate_equivalent.json lists the mutant of that default as equivalent; a generator change that
+    breaks this fails here (and that mutant must then be killed, not listed)."""
+    fp = cp.field_pos()
+    words = cp.program(False, dsp).encode()
+
+    def f(w, name):
+        return (w >> fp[name][0]) & ((1 << fp[name][1]) - 1)
+
+    reads = [(k, f(w, "opnd")) for k, w in enumerate(words) if f(w, "src") == cp.AS_IN]
+    assert len(reads) > 10                                       # (inputs are read)
+    assert all(code & 0xF <= cp.IN_THR for _, code in reads), reads
+
+
 def test_misuse_is_refused():
     """The builder's packing refuses fields that share bits."""
     with pytest.raises(AssertionError):

@@ -11,6 +11,16 @@
 // err_cyc_o: the clock count at the first flag (0: none). Results (sector_o, cmp_o, sat_o, err_o) are
 // defined only in the done cycle; the test compares them there. latency_i: the expected start -> done_o
 // clocks, driven by the test (its LATENCY, from the model), held from reset on.
+// Vector player (the test's run_vectors): the test writes one record per vector (the vector, the model's
+// expected results, the schedule around it: an aborted junk computation or an idle gap before it, the
+// sector_i / angle_i scrambles and start_i while busy) to a file, names it on stim_file_i with the count on
+// stim_n_i and raises play_i; the harness then drives every input of the calculator itself (on the falling
+// edges, as the test does) and checks in its own clock: busy_o, done_o one clock after each start; busy_o,
+// done_o, sector_o, cmp_o, sat_o, err_o === (0, 1, the expected results) 1 ns after the edge that must raise
+// done_o; busy_o, done_o low after an abort and in the clock after. It ends with start_i low for two clocks
+// and toggles play_end_o; fail_n_o counts failed checks, fail_idx_o / fail_what_o / fail_got_o describe the
+// first (what: 1 busy_o, done_o one clock after the start, 2 the results, 3 not idle after an abort, 4 an
+// abort's clock after). The checker above sees the inputs the calculator gets (ports or player).
 `timescale 1ns / 1ps
 `default_nettype none
 
@@ -18,7 +28,8 @@ module tb_svpwm_calc #(
   parameter bit Compact  = 1'b0,
   parameter bit Dsp      = svpwm_pkg::core_dsp(Compact),   // 0: the serial multiplier (no core builds it)
   parameter int CntWidth = 16,
-  parameter int DtWidth  = 10
+  parameter int DtWidth  = 10,
+  parameter int MaxVec   = 65600              // player: records per run
 ) (
   input  logic [15:0]           latency_i,
   input  logic                  rst_ni,
@@ -38,6 +49,9 @@ module tb_svpwm_calc #(
   input  logic [1:0]            dpwm_i,
   input  logic [CntWidth-1:0]   period_i,
   input  logic [DtWidth:0]      thr_i,
+  input  logic                  play_i,       // rising: run the player (stim_file_i, stim_n_i)
+  input  logic [8*64-1:0]       stim_file_i,  // file name (ASCII, right aligned, <= 64 characters)
+  input  logic [31:0]           stim_n_i,     // records in the file
   output logic                  clk,
   output logic                  busy_o,
   output logic                  done_o,
@@ -46,7 +60,12 @@ module tb_svpwm_calc #(
   output logic                  sat_o,
   output logic                  err_o,
   output logic [2:0]            chk_o,
-  output logic [31:0]           err_cyc_o
+  output logic [31:0]           err_cyc_o,
+  output logic                  play_end_o,   // toggles when the player has finished
+  output logic [31:0]           fail_n_o,     // player: failed checks
+  output logic [31:0]           fail_idx_o,   // player: record of the first failed check
+  output logic [2:0]            fail_what_o,  // player: kind of the first failed check (header)
+  output logic [3*CntWidth+6:0] fail_got_o    // player: {busy, done, sector, cmp, sat, err} then
 );
 
   localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + DtWidth + 1;
@@ -54,25 +73,54 @@ module tb_svpwm_calc #(
   initial clk = 1'b0;
   always #5 clk = ~clk;
 
+  // ---- the calculator's inputs: from the ports, or from the player while it runs ----
+  localparam int PinW = 192;                 // one input set in a record (see the player below)
+  logic                  playing;
+  logic                  p_start, p_abort;
+  logic [PinW-1:0]       p_pins;
+  logic                  start, abort;
+  logic [2:0]            mode, sector;
+  logic [15:0]           angle, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax;
+  logic [1:0]            dpwm;
+  logic [CntWidth-1:0]   period;
+  logic [DtWidth:0]      thr;
+
+  assign start    = playing ? p_start : start_i;
+  assign abort    = playing ? p_abort : abort_i;
+  assign mode     = playing ? p_pins[2:0]     : mode_i;
+  assign sector   = playing ? p_pins[5:3]     : sector_i;
+  assign angle    = playing ? p_pins[21:6]    : angle_i;
+  assign theta    = playing ? p_pins[37:22]   : theta_i;
+  assign m        = playing ? p_pins[53:38]   : m_i;
+  assign fabs     = playing ? p_pins[69:54]   : fabs_i;
+  assign v1       = playing ? p_pins[85:70]   : v1_i;
+  assign v2       = playing ? p_pins[101:86]  : v2_i;
+  assign vf_boost = playing ? p_pins[117:102] : vf_boost_i;
+  assign vf_slope = playing ? p_pins[133:118] : vf_slope_i;
+  assign vf_mmax  = playing ? p_pins[149:134] : vf_mmax_i;
+  assign dpwm     = playing ? p_pins[151:150] : dpwm_i;
+  assign period   = playing ? p_pins[152 +: CntWidth] : period_i;
+  assign thr      = playing ? p_pins[168 +: DtWidth + 1] : thr_i;
+
   svpwm_calc #(.Compact(Compact), .Dsp(Dsp), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
     .clk_i      (clk),
     .rst_ni     (rst_ni),
-    .start_i    (start_i),
-    .abort_i    (abort_i),
-    .mode_i     (mode_i),
-    .sector_i   (sector_i),
-    .angle_i    (angle_i),
-    .theta_i    (theta_i),
-    .m_i        (m_i),
-    .fabs_i     (fabs_i),
-    .v1_i       (v1_i),
-    .v2_i       (v2_i),
-    .vf_boost_i (vf_boost_i),
-    .vf_slope_i (vf_slope_i),
-    .vf_mmax_i  (vf_mmax_i),
-    .dpwm_i     (dpwm_i),
-    .period_i   (period_i),
-    .thr_i      (thr_i),
+    .start_i    (start),
+    .abort_i    (abort),
+    .mode_i     (mode),
+    .sector_i   (sector),
+    .angle_i    (angle),
+    .theta_i    (theta),
+    .m_i        (m),
+    .fabs_i     (fabs),
+    .v1_i       (v1),
+    .v2_i       (v2),
+    .vf_boost_i (vf_boost),
+    .vf_slope_i (vf_slope),
+    .vf_mmax_i  (vf_mmax),
+    .dpwm_i     (dpwm),
+    .period_i   (period),
+    .thr_i      (thr),
     .busy_o     (busy_o),
     .done_o     (done_o),
     .sector_o   (sector_o),
@@ -86,8 +134,7 @@ module tb_svpwm_calc #(
   int unsigned          ref_st, cyc;       // ref_st: 0 idle, k = k-th clock after the accepted start
   logic                 ref_done;
 
-  assign held = {mode_i, theta_i, m_i, fabs_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i,
-                 period_i, thr_i};
+  assign held = {mode, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax, dpwm, period, thr};
 
   always @(posedge clk or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -107,19 +154,148 @@ module tb_svpwm_calc #(
         err_cyc_o <= cyc + 1;
       // the reference's next cycle
       ref_done <= 1'b0;
-      if (abort_i) begin
+      if (abort) begin
         ref_st <= 0;
       end else if (ref_st == 32'(latency_i) - 1) begin
         ref_st   <= 0;
         ref_done <= 1'b1;
       end else if (ref_st != 0) begin
         ref_st <= ref_st + 1;
-      end else if (start_i) begin
+      end else if (start) begin
         ref_st <= 1;
         held_q <= held;
       end
     end
   end
+
+  // ---- vector player (header) ----
+  // A record (test_svpwm_calc.py: REC_FIELDS), from bit 0: the control word (CtlW bits), the vector's
+  // inputs, junk A (the aborted computation's inputs, or the idle gap's), junk B (the inputs after an
+  // abort). An input set (PinW bits): mode[2:0], sector[5:3], angle[21:6], theta, m, fabs, v1, v2, vf_boost,
+  // vf_slope, vf_mmax (16 bits each from bit 22), dpwm[151:150], period[152 +: CntWidth], thr[168 +: DtWidth+1].
+  localparam int CtlW = 192;
+  localparam int RecW = CtlW + 3 * PinW;
+  logic [RecW-1:0] stim [MaxVec];
+
+  // control word fields
+  localparam int CPre  = 0;     // 2: 0 none, 1 an aborted junk computation, 2 an idle gap
+  localparam int CAk   = 2;     // 9: the abort k clocks after the junk start (0: with start_i)
+  localparam int CGap  = 11;    // 2: idle gap clocks (1..3)
+  localparam int CAst  = 13;    // 1: start_i while the junk computation is busy
+  localparam int CAsec = 14;    // 3: sector_i, angle_i while the junk computation is busy
+  localparam int CAang = 17;    // 16
+  localparam int CMid  = 33;    // 1: scramble again mid-computation
+  localparam int CMk   = 34;    // 9: ... at falling edge k after the start (+ 2 ns)
+  localparam int CMst  = 43;    // 1: start_i then
+  localparam int CMsec = 44;    // 3
+  localparam int CMang = 47;    // 16
+  localparam int CSsec = 63;    // 3: sector_i, angle_i from one clock after the start (start_i high)
+  localparam int CSang = 66;    // 16
+  localparam int CEsec = 82;    // 3: expected sector_o
+  localparam int CEc   = 85;    // 3 x 16: expected C_a, C_b, C_c
+  localparam int CEsat = 133;   // 1: expected sat_o
+  localparam int CEerr = 134;   // 1: expected err_o
+
+  logic [RecW-1:0]       rec;
+  logic [3*CntWidth-1:0] exp_cmp;
+  logic [3*CntWidth+6:0] got;
+  int unsigned           gi, rest, mid;
+  localparam int ClkNs = 10;                 // the clock period (always #5 above)
+
+  function automatic logic [3*CntWidth+6:0] outputs();
+    return {busy_o, done_o, sector_o, cmp_o, sat_o, err_o};
+  endfunction
+
+  task automatic fail(input int unsigned idx, input logic [2:0] what);
+    if (fail_n_o == 0) begin
+      fail_idx_o  = idx;
+      fail_what_o = what;
+      fail_got_o  = outputs();
+    end
+    fail_n_o = fail_n_o + 1;
+  endtask
+
+  initial begin
+    playing     = 1'b0;
+    p_start     = 1'b0;
+    p_abort     = 1'b0;
+    p_pins      = '0;
+    play_end_o  = 1'b0;
+    fail_n_o    = 0;
+    fail_idx_o  = 0;
+    fail_what_o = 0;
+    fail_got_o  = '0;
+  end
+
+  // (the delays below are computed, all > 0: Verilator's ZERODLY only notes it cannot tell)
+  /* verilator lint_off ZERODLY */
+  always @(posedge play_i) begin
+    $readmemh(stim_file_i, stim, 0, stim_n_i - 1);
+    fail_n_o    = 0;
+    fail_idx_o  = 0;
+    fail_what_o = 0;
+    fail_got_o  = '0;
+    p_start     = 1'b0;
+    p_abort     = 1'b0;
+    p_pins      = {PinW{1'b0}};
+    playing     = 1'b1;
+    @(negedge clk);
+    for (gi = 0; gi < stim_n_i; gi++) begin
+      rec = stim[gi];
+      if (rec[CPre +: 2] == 2'd1) begin                  // an aborted junk computation
+        p_start = 1'b1;
+        p_pins  = rec[CtlW + PinW +: PinW];
+        p_abort = (rec[CAk +: 9] == 9'd0);
+        @(negedge clk);
+        if (rec[CAk +: 9] != 9'd0) begin
+          p_start        = rec[CAst];
+          p_pins[5:3]    = rec[CAsec +: 3];
+          p_pins[21:6]   = rec[CAang +: 16];
+          #((32'(rec[CAk +: 9]) - 1) * ClkNs + 2);     // 2 ns after falling edge k (before rising edge k)
+          p_abort = 1'b1;
+          @(negedge clk);
+        end
+        p_start = 1'b0;
+        p_pins  = rec[CtlW + 2 * PinW +: PinW];
+        p_abort = 1'b0;
+        if (busy_o !== 1'b0 || done_o !== 1'b0) fail(gi, 3'd3);
+        @(negedge clk);
+        if (busy_o !== 1'b0 || done_o !== 1'b0) fail(gi, 3'd4);
+      end else if (rec[CPre +: 2] == 2'd2) begin         // an idle gap, every input scrambled
+        p_start = 1'b0;
+        p_pins  = rec[CtlW + PinW +: PinW];
+        repeat (32'(rec[CGap +: 2])) @(negedge clk);
+      end
+      p_start = 1'b1;                                     // the vector
+      p_pins  = rec[CtlW +: PinW];
+      @(negedge clk);
+      if (busy_o !== 1'b1 || done_o !== 1'b0) fail(gi, 3'd1);
+      p_pins[5:3]  = rec[CSsec +: 3];                     // start_i held high: ignored while busy
+      p_pins[21:6] = rec[CSang +: 16];
+      // to 1 ns after the edge that must raise done_o (delays, not edge counts: one wake-up each)
+      rest = (32'(latency_i) - 1) * ClkNs - ClkNs / 2 + 1;
+      if (rec[CMid]) begin                                // scramble once more mid-computation
+        mid = 32'(rec[CMk +: 9]) * ClkNs + 2;
+        #(mid);
+        p_start      = rec[CMst];
+        p_pins[5:3]  = rec[CMsec +: 3];
+        p_pins[21:6] = rec[CMang +: 16];
+        rest = rest - mid;
+      end
+      #(rest);
+      for (int ph = 0; ph < 3; ph++) exp_cmp[ph * CntWidth +: CntWidth] = rec[CEc + 16 * ph +: CntWidth];
+      if (outputs() !== {1'b0, 1'b1, rec[CEsec +: 3], exp_cmp, rec[CEsat], rec[CEerr]}) fail(gi, 3'd2);
+      @(negedge clk);                                     // middle of the done cycle
+    end
+    p_start = 1'b0;
+    p_abort = 1'b0;
+    p_pins  = {PinW{1'b0}};
+    @(negedge clk);
+    @(negedge clk);
+    playing    = 1'b0;
+    play_end_o = !play_end_o;
+  end
+  /* verilator lint_on ZERODLY */
 
 endmodule
 

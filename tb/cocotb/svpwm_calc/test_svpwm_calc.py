@@ -31,12 +31,18 @@ Checks:
 * harness (tb_svpwm_calc.sv), every clock: busy_o and done_o == the handshake reference for the stimulus
   actually applied (starts, ignored starts, aborts); and that the test kept the held inputs while busy.
   Its sticky chk_o is asserted 0 after every run.
-* `run_vectors` (event driven: wakes one clock after the start, 1 ns after the edge that must raise done_o,
-  in the done cycle and at most twice more per vector): results == model in the done cycle; done_o high
-  exactly LATENCY - 1 periods after the sampling edge (and, by the harness, never before); one clock
-  after the start busy_o = 1, done_o = 0. While busy, start_i stays HIGH and sector_i / angle_i are scrambled
-  (25 %: again mid-computation, start_i random): ignored. Back to back (start in the done cycle); 2 % of the
-  vectors follow an idle gap with all inputs scrambled, 3 % an aborted computation of junk inputs.
+* `run_vectors`: the vectors, the model's results for each and the schedule around each are written to a file
+  of records, which the harness's vector player (tb_svpwm_calc.sv) runs back to back and checks in its own
+  clock, so Python does not wake per vector (it waits for the player's end and asserts its failure count is 0;
+  the first failure is reported with the vector, its schedule, the RTL's outputs and the model's results).
+  Per vector, as the Python loop of earlier versions did it: start_i on a falling edge; one clock later busy_o
+  = 1, done_o = 0; 1 ns after the edge that must raise done_o (LATENCY - 1 periods after the sampling edge)
+  (busy_o, done_o, sector_o, C_a, C_b, C_c, sat_o, err_o) === (0, 1, model) (and, by the harness's checker,
+  done_o never before); the next start in the done cycle (back to back). While busy, start_i stays HIGH and
+  sector_i / angle_i are scrambled (25 %: again at a random clock mid-computation, start_i random): ignored.
+  2 % of the vectors follow an idle gap of 1..3 clocks with all inputs scrambled, 3 % an aborted computation
+  of junk inputs (abort_i k = 0 .. LATENCY-1 clocks after its start, sector_i / angle_i scrambled and start_i
+  random while it is busy; busy_o, done_o low at once and in the clock after).
 * `protocol`: every clock driven from Python against a reference (busy_o, done_o every clock, results in
   every done cycle): single starts with gaps, start_i held high (ignored, back-to-back restarts), random
   start pulses, aborts in the first / last busy clocks, random start + abort pulses.
@@ -56,12 +62,22 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
   exactly on the 60 deg sector lines), `directed_dq` (vector grid x theta every 30 deg +-3 LSB incl.
   theta' = 30 deg exactly, a full revolution), `directed_invalid` (modes 5..7: zero vector + err_o); each
   spread over every DPWM setting and the (P, thr) corners, half of them at P = 2^CntWidth - 1.
+* Verilator runs every directed vector. Icarus runs `directed_corners`, `_vf`, `_ab`, `_invalid` in full and
+  a complete subset of the three large sets (`icarus_subset`: every ICARUS_STRIDE = 3rd vector plus the first
+  vector of every category no kept vector covers yet; CALC_DIRECTED_STRIDE overrides, scripts/mutate.py sets
+  1): every (P, thr) corner and DPWM setting in each, and `directed_freq` every sector x theta' x m (1,411 of
+  3,360 vectors in the full variant), `directed_polar` every theta and every m (521 of 1,016), `directed_dq`
+  every theta and every (v1, v2) (724 of 1,944).
 * `angle_sweep`: every in-sector angle 0 .. 0xFFFF (every 61st on Icarus) at m = vertex, vertex + 1, 0xFFFF
   or random, random sector, legal (P, thr), DPWM (full, FREQ mode).
 * `random_vectors`: seeded; full: every mode incl. 5..7, DPWM, V/f parameters, saturation; compact: junk on
   the ignored inputs; P in [8, 2^CntWidth - 1] (often <= 4 thr_max) with thr up to min(P/2, thr_max),
-  thr_max / 0 often (snapping likely). 50,000 vectors on Verilator, 1,000 on Icarus (~25 us per clock of
-  the busy calculator there: the cross-simulator check of the same stream's start); CALC_NRAND overrides.
+  thr_max / 0 often (snapping likely). 50,000 vectors on Verilator, 1,000 on Icarus (the cross-simulator
+  check of the same stream's start); CALC_NRAND overrides.
+* Icarus's cost: ~22 us per clock of the busy calculator (Compact = 0), the simulator's evaluation of the RTL
+  itself (the same without cocotb, with the harness or the bare svpwm_calc; idle: ~4 us): vvp's behavioural
+  processes of svpwm_calc (~27 per clock), not the ROMs, the harness's checker or Python. Verilator:
+  ~0.4 us per clock without cocotb, ~0.5 with it (the player; the per-vector Python loop it replaced: ~0.6).
 
 * `serial_vectors` (build full_serial only: Compact = 0 with Dsp = 0, the serial multiplier no core builds):
   every CALC_SERIAL_STRIDE-th vector of every directed set + CALC_SERIAL_NRAND random vectors; LATENCY is then
@@ -98,6 +114,17 @@ SERIAL = os.environ.get("SVPWM_CALC_DSP", "") == "0"      # Compact = 0 on the s
 LATENCY = calc_latency(False, False) if SERIAL else {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
 
 CLK_NS = 10                  # the harness's clock period
+# player records (tb_svpwm_calc.sv: the vector player): an input set, the control word's fields (offset, width)
+PIN_W = CTL_W = 192
+REC_W = CTL_W + 3 * PIN_W
+MAX_VEC = 65600
+PIN_FIELDS = ((0, 3), (3, 3), (6, 16), (22, 16), (38, 16), (54, 16), (70, 16), (86, 16), (102, 16), (118, 16),
+              (134, 16), (150, 2), (152, 16), (168, 16))     # mode .. thr in Vec's order (fabs for freq)
+assert PIN_FIELDS[-1][0] + PIN_FIELDS[-1][1] <= PIN_W
+CTL_FIELDS = {"pre": (0, 2), "ak": (2, 9), "gap": (11, 2), "ast": (13, 1), "asec": (14, 3), "aang": (17, 16),
+              "mid": (33, 1), "mk": (34, 9), "mst": (43, 1), "msec": (44, 3), "mang": (47, 16), "ssec": (63, 3),
+              "sang": (66, 16), "esec": (82, 3), "ea": (85, 16), "eb": (101, 16), "ec": (117, 16),
+              "esat": (133, 1), "eerr": (134, 1)}
 P_MIN = 8                    # shortest period exercised (the RTL header states no minimum besides 2 thr)
 FSHIFT = fixed.FREQ_WIDTH - 17
 M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))        # 0x93CD, the hexagon vertex
@@ -140,6 +167,7 @@ class CalcTB:
         self.top = (1 << self.W) - 1
         self.thr_max = (1 << len(dut.thr_i)) - 2      # dead time + minimum pulse, each DtWidth bits
         self.lat = LATENCY
+        self.nplay = 0
 
     # ---- model and pins -------------------------------------------------------------------------------
     def expect(self, v: Vec) -> tuple[int, ...]:
@@ -242,6 +270,7 @@ class CalcTB:
         dut = self.dut
         self.drive(0, Vec())
         dut.abort_i.value = 0
+        dut.play_i.value = 0
         dut.latency_i.value = self.lat
         dut.rst_ni.value = 0
         await FallingEdge(dut.clk)
@@ -276,45 +305,91 @@ class CalcTB:
         await FallingEdge(dut.clk)                              # no done_o on its way
         assert self.outputs()[:2] == (0, 0), f"abort {k} clocks after the start: busy_o / done_o after the abort"
 
+    @staticmethod
+    def pins(v: Vec) -> int:
+        """The calculator's input word of `v` in a player record (tb_svpwm_calc.sv: PinW; PIN_FIELDS)."""
+        return (v.mode | v.sector << 3 | v.angle << 6 | v.theta << 22 | v.m << 38 | fabs(v.freq) << 54
+                | (v.v1 & 0xFFFF) << 70 | (v.v2 & 0xFFFF) << 86 | v.boost << 102 | v.slope << 118 | v.mmax << 134
+                | v.dpwm << 150 | v.period << 152 | v.thr << 168)
+
+    def record(self, i: int, v: Vec, exp: tuple[int, ...], rng: random.Random) -> tuple[int, dict]:
+        """Vector i's player record (tb_svpwm_calc.sv: CtlW, the vector, junk A, junk B), its schedule drawn
+        from rng: 3 % an aborted junk computation before it (abort_i k = 0 .. LATENCY-1 clocks after its
+        start; sector_i / angle_i scrambled and start_i random while that is busy), 2 % an idle gap of 1..3
+        clocks with every input scrambled; one clock after the start sector_i / angle_i scrambled with start_i
+        high, and 25 % of the vectors once more at a random clock mid-computation with start_i random."""
+        lat = self.lat
+        ctl, junk_a, junk_b = {}, Vec(), Vec()
+        r = rng.random()
+        if r < 0.03:                                        # a junk computation aborted after k clocks
+            k = rng.randint(0, lat - 1)
+            junk_a = self.junk(rng)
+            ctl.update(pre=1, ak=k)
+            if k:
+                ctl["ast"] = int(rng.random() < 0.5)
+                sc = self.scramble(junk_a, rng)
+                ctl.update(asec=sc.sector, aang=sc.angle)
+            junk_b = self.junk(rng)
+        elif r < 0.05:                                      # an idle gap, every input scrambled
+            junk_a = self.junk(rng)
+            ctl.update(pre=2, gap=rng.randint(1, 3))
+        sc = self.scramble(v, rng)                          # start_i held high: ignored while busy
+        ctl.update(ssec=sc.sector, sang=sc.angle)
+        if lat > 4 and rng.random() < 0.25:                 # scramble once more mid-computation
+            ctl.update(mid=1, mk=rng.randint(1, lat - 3))
+            ctl["mst"] = int(rng.random() < 0.5)
+            sc = self.scramble(v, rng)
+            ctl.update(msec=sc.sector, mang=sc.angle)
+        sec, ca, cb, cc, sat, err = exp
+        ctl.update(esec=sec, ea=ca, eb=cb, ec=cc, esat=sat, eerr=err)
+        word = 0
+        for k, val in ctl.items():
+            off, w = CTL_FIELDS[k]
+            assert 0 <= val < (1 << w), (k, val)
+            word |= val << off
+        word |= (self.pins(v) | (self.pins(junk_a) << PIN_W if ctl.get("pre") else 0)
+                 | (self.pins(junk_b) << 2 * PIN_W if ctl.get("pre") == 1 else 0)) << CTL_W
+        return word, ctl
+
     async def run_vectors(self, vecs: list[Vec], rng: random.Random, name: str) -> None:
-        """Event driven, back to back (class docstring of the module: `run_vectors`)."""
+        """The harness's player runs the vectors back to back with their schedules (`record`), the model's
+        results in each record; it checks every vector in its clock (module docstring: `run_vectors`)."""
         dut, lat = self.dut, self.lat
         t0 = time.perf_counter()
-        await FallingEdge(dut.clk)
-        for i, v in enumerate(vecs):
-            r = rng.random()
-            if r < 0.03:                                        # a junk computation aborted after k clocks
-                await self.aborted_start(rng, rng.randint(0, lat - 1))
-            elif r < 0.05:                                      # an idle gap, every input scrambled
-                self.drive(0, self.junk(rng))
-                for _ in range(rng.randint(1, 3)):
-                    await FallingEdge(dut.clk)
-            self.drive(1, v)
-            await FallingEdge(dut.clk)
-            busy, done = int(dut.busy_o.value), int(dut.done_o.value)
-            assert (busy, done) == (1, 0), f"{name} {i}: busy_o, done_o = {busy, done} one clock after the start"
-            self.drive_scrambled(1, self.scramble(v, rng))      # start_i held high: ignored while busy
-            rest = (lat - 1) * CLK_NS - CLK_NS // 2 + 1         # to 1 ns after the edge that raises done_o
-            if lat > 4 and rng.random() < 0.25:                 # scramble once more mid-computation
-                k = rng.randint(1, lat - 3) * CLK_NS + 2
-                await Timer(k, "ns")
-                self.drive_scrambled(int(rng.random() < 0.5), self.scramble(v, rng))
-                rest -= k
-            # done_o exactly LATENCY - 1 periods after the sampling edge: high here, and never before (the
-            # harness compares done_o with its reference of the handshake on every clock: chk_o bit 1)
-            await Timer(rest, "ns")
-            exp = self.expect(v)
-            got = self.outputs()
-            assert got == (0, 1, *exp), \
-                f"{name} {i} {v}: RTL (busy, done, sector, Ca, Cb, Cc, sat, err) = {got}, model {exp} " \
-                f"(LATENCY {lat}: done_o expected {(lat - 1) * CLK_NS} ns after the start edge)"
-            await FallingEdge(dut.clk)                          # middle of the done cycle
-        self.drive(0, Vec())
-        await FallingEdge(dut.clk)
-        await FallingEdge(dut.clk)
+        exps = [self.expect(v) for v in vecs]
+        recs = [self.record(i, v, e, rng) for i, (v, e) in enumerate(zip(vecs, exps))]
+        assert len(vecs) <= MAX_VEC
+        self.nplay += 1
+        f = Path(f"calc_stim_{os.getpid()}_{self.nplay}.hex")     # cwd: the item's own sim directory
+        f.write_text("".join(f"{w:0{REC_W // 4}x}\n" for w, _ in recs))
+        t1 = time.perf_counter()
+        assert len(str(f)) <= len(dut.stim_file_i) // 8, f
+        dut.stim_file_i.value = int.from_bytes(str(f).encode(), "big")
+        dut.stim_n_i.value = len(vecs)
+        end = int(dut.play_end_o.value)
+        dut.play_i.value = 1
+        while int(dut.play_end_o.value) == end:
+            await dut.play_end_o.value_change
+        dut.play_i.value = 0
+        f.unlink()
+        nfail = int(dut.fail_n_o.value)
+        if nfail:
+            i, what, got = int(dut.fail_idx_o.value), int(dut.fail_what_o.value), int(dut.fail_got_o.value)
+            W, ctl = self.W, recs[i][1]
+            got = ((got >> (3 * W + 6)) & 1, (got >> (3 * W + 5)) & 1, (got >> (3 * W + 2)) & 7,
+                   (got >> 2) & self.top, (got >> (W + 2)) & self.top, (got >> (2 * W + 2)) & self.top,
+                   (got >> 1) & 1, got & 1)
+            what = {1: "busy_o, done_o one clock after the start != (1, 0)",
+                    2: f"RTL (busy, done, sector, Ca, Cb, Cc, sat, err) != (0, 1, model {exps[i]}) (LATENCY {lat}: "
+                       f"done_o expected {(lat - 1) * CLK_NS} ns after the start edge)",
+                    3: f"busy_o, done_o after the abort at {ctl.get('ak')} clocks != (0, 0)",
+                    4: f"busy_o, done_o in the clock after the abort at {ctl.get('ak')} clocks != (0, 0)"}[what]
+            raise AssertionError(f"{name}: {nfail} failed check(s) of the player; the first: vector {i} {vecs[i]} "
+                                 f"(schedule {ctl}): {what}; RTL outputs (busy, done, sector, Ca, Cb, Cc, sat, err) "
+                                 f"= {got}")
         self.check_harness(name)
-        dut._log.info("%s: %d vectors == model in %.1f s (LATENCY %d)", name, len(vecs), time.perf_counter() - t0,
-                      lat)
+        dut._log.info("%s: %d vectors == model in %.1f s (LATENCY %d; records %.1f s)", name, len(vecs),
+                      time.perf_counter() - t0, lat, t1 - t0)
 
     async def protocol(self, sched: list[tuple[int, int, Vec]], min_starts: int) -> None:
         """Every clock: busy_o, done_o against a reference of the handshake for the schedule of (start_i,
@@ -379,6 +454,9 @@ def boundary_thetas() -> list[int]:
     (6 theta is even, so theta' = 0 exactly only at 0 / 180 deg and theta' = 30 deg exactly only at
     theta = 16384 / 49152; theta' = 60 deg - 2 LSB is the largest reachable.)"""
     return sorted({(round(k * 65536 / 12) + d) & 0xFFFF for k in range(12) for d in range(-3, 4)})
+
+
+BOUNDARY = frozenset(boundary_thetas())
 
 
 def ab_on_lines() -> list[tuple[int, int]]:
@@ -462,11 +540,45 @@ def directed(key: str, top: int, thr_max: int) -> list[Vec]:
 DIRECTED = ("freq", "corners", "vf", "polar", "ab", "dq", "invalid")     # vf .. invalid: full variant only
 
 
+# Icarus (~22 us per clock of the busy calculator, the simulator's own evaluation of the RTL: see the module
+# docstring) runs a complete subset of the three large sets: every ICARUS_STRIDE-th vector and, in list order,
+# every vector that is the first of a category (below) no kept vector has covered yet. Verilator runs them all.
+ICARUS_STRIDE = 3
+_CAT_COMMON = (lambda v: (v.period, v.thr), lambda v: v.dpwm)
+CATEGORIES = {
+    "freq":  (lambda v: (v.sector, v.angle, v.m),),                            # every sector x theta' x m
+    "polar": (lambda v: v.theta, lambda v: v.m, lambda v: (v.theta in BOUNDARY, v.m)),   # every theta, every m
+    "dq":    (lambda v: v.theta, lambda v: (v.v1, v.v2), lambda v: (v.theta in BOUNDARY, v.v1, v.v2)),
+}
+
+
+def icarus_subset(key: str, vecs: list[Vec], stride: int) -> list[Vec]:
+    """`vecs` itself for stride 1 or a set not in CATEGORIES; else every stride-th vector plus the first vector
+    of every category (CATEGORIES[key] and the common ones: (P, thr) corner, DPWM setting) not yet covered."""
+    if stride <= 1 or key not in CATEGORIES:
+        return vecs
+    cats = _CAT_COMMON + CATEGORIES[key]
+    seen: list[set] = [set() for _ in cats]
+    out = []
+    for i, v in enumerate(vecs):
+        ks = [c(v) for c in cats]
+        if i % stride == 0 or any(k not in s for k, s in zip(ks, seen)):
+            out.append(v)
+            for k, s in zip(ks, seen):
+                s.add(k)
+    return out
+
+
 def _directed_test(key: str):
     async def t(dut):
         tb = CalcTB(dut)
+        vecs = directed(key, tb.top, tb.thr_max)
+        stride = int(os.environ.get("CALC_DIRECTED_STRIDE", ICARUS_STRIDE if icarus() else 1))
+        sub = icarus_subset(key, vecs, stride)
+        if len(sub) < len(vecs):
+            dut._log.info("%s: %d of the %d vectors (stride %d + every category)", key, len(sub), len(vecs), stride)
         await tb.reset()
-        await tb.run_vectors(directed(key, tb.top, tb.thr_max), random.Random(zlib.crc32(key.encode())), key)
+        await tb.run_vectors(sub, random.Random(zlib.crc32(key.encode())), key)
     t.__name__ = t.__qualname__ = f"directed_{key}"
     t.__doc__ = f"Directed vectors, set {key!r} (module docstring)."
     return cocotb.test()(t)

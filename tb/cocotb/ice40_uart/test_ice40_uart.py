@@ -3,7 +3,8 @@
 (frames from scripts/svpwmctl.py, so its encoder / decoder is checked against the RTL), the gates, the
 fault input and the LEDs. Register names, byte offsets, fields and reset values come from
 svpwm_model.regmap (generated from rdl/svpwm.rdl); gate edges are compared with the golden model
-(svpwm_model.core) clock by clock. Fast UART in simulation: 8 clocks per bit, 40-bit-time timeout.
+(svpwm_model.core) clock by clock. Fast UART in simulation: 8 clocks per bit on the RTL, 4 (the UART's
+minimum) on the gate-level netlist (env SVPWM_CPB), 40-bit-time timeout.
 Both variants of the system (env SVPWM_COMPACT): the full one (iCEBreaker) and the compact one (iCEstick:
 svpwm_core / svpwm_regs Compact = 1), whose register map is regmap.variant(True) -- the registers and fields
 it does not have read 0 and ignore writes -- and whose core is CoreModel(compact=True).
@@ -31,7 +32,8 @@ import svpwmctl as ctl  # noqa: E402
 from svpwm_model import core, fixed  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
-CPB = 8                 # clocks per bit (harness parameter)
+RTL_CPB, GL_CPB = 8, 4  # clocks per bit (harness / system parameter ClksPerBit): RTL, gate-level netlist
+CPB = int(os.environ.get("SVPWM_CPB", RTL_CPB))             # this run's (set by the pytest function)
 TIMEOUT_BITS = 40
 CLK_HZ = 100_000_000    # harness ClkHz
 COMPACT = int(os.environ.get("SVPWM_COMPACT", "0"))          # harness / system parameter Compact
@@ -452,8 +454,8 @@ def test_ice40_uart(sim, compact, case):
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
-            parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case)
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": RTL_CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
+            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(RTL_CPB)}, testcase=case)
 
 
 # --------------------------------------------------------------------------- gate level
@@ -474,7 +476,7 @@ def _netlist(compact: int) -> tuple[Path, Path]:
     top = "svpwm_ice40_sys"
     out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"
     board = ice40flow.BOARDS["icestick" if compact else "icebreaker"]
-    params = dict(ClkHz=CLK_HZ, ClksPerBit=CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
+    params = dict(ClkHz=CLK_HZ, ClksPerBit=GL_CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
     srcs = ice40flow.system_sources()
     # synthesised once for the items of this variant: again only when a source, the board or a parameter
     # changed (the key), under a lock (pytest-xdist workers)
@@ -506,12 +508,15 @@ def test_ice40_uart_gate_level(sim, compact, case):
     simulators'): a construct the two read differently fails here (as -FreqWidth'(FreqMax) did). On both
     simulators with Yosys' cell models (cells_sim.v).
     break_condition is left out: it probes the UART receiver inside the hierarchy, which the netlist flattens;
-    the tests touch only the harness' own signals (vpi_top_only: Verilator keeps no netlist signal public)."""
+    the tests touch only the harness' own signals (vpi_top_only: Verilator keeps no netlist signal public).
+    The UART runs at GL_CPB = 4 clocks per bit here (the RTL tests: 8): the same frames and checks in half the
+    clocks. Icarus simulates the netlist at ~0.30 ms (full system) / ~0.14 ms (compact) of CPU per clock, nearly
+    all of it in the flip-flop models' always blocks, and most of these tests' clocks are UART bits."""
     from simrun import run_sim
     netlist, cells = _netlist(compact)
     run_sim(sim, toplevel="tb_ice40_uart", sources=[cells, netlist, Path(__file__).parent / "tb_ice40_uart.sv"],
             test_module="test_ice40_uart", test_dir=Path(__file__).parent,
             build_name=f"gate_level_c{compact}", defines={"GATE_LEVEL": 1, "NO_ICE40_DEFAULT_ASSIGNMENTS": 1},
-            parameters={"ClkHz": CLK_HZ, "ClksPerBit": CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact)}, testcase=case, vpi_top_only=True,
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": GL_CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
+            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(GL_CPB)}, testcase=case, vpi_top_only=True,
             extra_build_args=GL_VERILATOR_ARGS if sim == "verilator" else [])

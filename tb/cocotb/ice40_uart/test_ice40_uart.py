@@ -455,7 +455,8 @@ def test_ice40_uart(sim, compact, case):
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
             parameters={"ClkHz": CLK_HZ, "ClksPerBit": RTL_CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(RTL_CPB)}, testcase=case)
+            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(RTL_CPB)}, testcase=case,
+            vpi_top_only=True, vpi_modules=["uart_rx"])    # break_condition probes u_sys.u_bridge.u_rx
 
 
 # --------------------------------------------------------------------------- gate level

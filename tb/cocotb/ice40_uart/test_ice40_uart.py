@@ -23,8 +23,9 @@ from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
-from clocks import clock_cycles
+from cocotb.triggers import Event, FallingEdge, First, ReadOnly, RisingEdge, Timer
+from cocotb.utils import get_sim_time
+from clocks import CLK_PS, clock_cycles
 
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
@@ -56,44 +57,55 @@ def reset_value(reg: R.Register) -> int:
 
 
 class Uart:
-    """Host side of the UART: sends bytes on rx_i, decodes tx_o (with the clock each start bit began)."""
+    """Host side of the UART: sends bytes on rx_i, decodes tx_o (with the clock each start bit began).
+
+    Python wakes once per bit, never per clock: rx_i changes a quarter clock after a rising edge and tx_o is
+    read a quarter clock before one (timers; the harness clock is CLK_PS, clocks.py). Both pins only meet
+    flip-flops clocked on the rising edge, so the system sees exactly what it saw when rx_i changed and tx_o
+    was read at the edges themselves: each bit for CPB edges, tx_o sampled in the same clock (the middle
+    of the bit). recv() wakes when a byte has arrived (an event), not to poll."""
 
     def __init__(self, dut):
         self.dut = dut
         self.rx_bytes: list[tuple[int, int]] = []      # (byte, cycle of its start bit's first clock)
+        self.arrived = Event()
         dut.rx_i.value = 1
         cocotb.start_soon(self._monitor())
 
     async def send(self, data: bytes, stop_ok: bool = True, gap_bits: int = 0):
+        await RisingEdge(self.dut.clk)
+        await Timer(CLK_PS // 4, "ps")
         for b in data:
             for bit in [0] + [(b >> k) & 1 for k in range(8)] + [1 if stop_ok else 0]:
                 self.dut.rx_i.value = bit
-                await clock_cycles(self.dut.clk, CPB)
+                await Timer(CPB * CLK_PS, "ps")
             self.dut.rx_i.value = 1
             if gap_bits:
-                await clock_cycles(self.dut.clk, CPB * gap_bits)
+                await Timer(CPB * gap_bits * CLK_PS, "ps")
 
     async def _monitor(self):
         d = self.dut
         while True:
-            await FallingEdge(d.tx_o)
+            await FallingEdge(d.tx_o)                   # at the rising edge that starts the start bit
             await ReadOnly()
             start = int(d.cycle.value)
-            await clock_cycles(d.clk, CPB // 2)
+            await Timer(CPB // 2 * CLK_PS - CLK_PS // 4, "ps")   # the clock before edge start + CPB / 2
             assert int(d.tx_o.value) == 0, "tx start bit glitch"
             v = 0
             for k in range(8):
-                await clock_cycles(d.clk, CPB)
+                await Timer(CPB * CLK_PS, "ps")
                 v |= int(d.tx_o.value) << k
-            await clock_cycles(d.clk, CPB)
+            await Timer(CPB * CLK_PS, "ps")
             assert int(d.tx_o.value) == 1, "tx stop bit low"
             self.rx_bytes.append((v, start))
+            self.arrived.set()
 
     async def recv(self, n: int, max_bits: int = 120) -> list[tuple[int, int]]:
-        for _ in range(max_bits):
-            if len(self.rx_bytes) >= n:
-                break
-            await clock_cycles(self.dut.clk, CPB)
+        """The next n bytes, or fewer if they have not all arrived within max_bits bit times."""
+        t_end = get_sim_time("ps") + max_bits * CPB * CLK_PS
+        while len(self.rx_bytes) < n and get_sim_time("ps") < t_end:
+            self.arrived.clear()
+            await First(self.arrived.wait(), Timer(t_end - get_sim_time("ps"), "ps"))
         out, self.rx_bytes = self.rx_bytes[:n], self.rx_bytes[n:]
         return out
 

@@ -519,7 +519,8 @@ def _netlist(compact: int, wait: bool = True) -> tuple[Path, Path] | None:
 # other bits of the same wire through LUTs: a loop at the signal level, none at the bit level) and
 # WIDTHTRUNC / WIDTHEXPAND (in cells_sim.v's SB_MAC16) are warnings about the generated netlist and Yosys'
 # cell model, not about the RTL (linted with -Wall). -O0: the full system's ~7 MB of model C++ compiles in
-# ~9 s of CPU instead of ~25 s at -O2 (g++ 12); a test then simulates in 0.2-1.3 s.
+# ~9 s of CPU instead of ~25 s at -O2 (g++ 12); a test then simulates in 0.2-1.3 s. (-CFLAGS reach Verilator's
+# runtime objects too: these two builds compile their own -O0 copy once per ccache, ~11 s of CPU.)
 GL_VERILATOR_ARGS = ["-Wno-UNOPTFLAT", "-Wno-WIDTHTRUNC", "-Wno-WIDTHEXPAND", "-CFLAGS", "-O0"]
 
 

@@ -169,6 +169,7 @@ def run_sim(
     extra_build_args: Sequence[str] = (),
     record: bool = False,
     vpi_top_only: bool = False,
+    vpi_modules: Sequence[str] = (),
 ) -> Path:
     """Build `sources` with `sim` and run cocotb `test_module` (found in
     `test_dir`) against `toplevel`.  Fails the calling pytest test unless at
@@ -179,7 +180,8 @@ def run_sim(
 
     vpi_top_only: Verilator: only the toplevel's own signals are visible to cocotb (a Verilator config file
     instead of cocotb's --public-flat-rw, which keeps every signal of the design and ~3x slows the core);
-    for harnesses whose tests touch nothing below the toplevel.
+    for harnesses whose tests touch nothing below the toplevel. vpi_modules: with vpi_top_only, the signals
+    of these modules (every instance) are visible as well, for a test that probes a submodule.
 
     timing_harness: the harness uses SV delays (`always #5`) -> Verilator
     needs --timing.  Set False for a pure-RTL toplevel clocked from cocotb.
@@ -226,7 +228,8 @@ def run_sim(
     runner = get_runner(sim)
     if sim == "verilator" and vpi_top_only:
         vlt = build_dir / "vpi_top_only.vlt"
-        text = f'`verilator_config\npublic_flat_rw -module "{toplevel}" -var "*"\n'
+        text = "`verilator_config\n" + "".join(f'public_flat_rw -module "{m}" -var "*"\n'
+                                              for m in [toplevel, *vpi_modules])
         if not vlt.is_file() or vlt.read_text() != text:      # atomically: other items may be reading it
             tmp = vlt.with_suffix(f".{os.getpid()}.tmp")
             tmp.write_text(text)

@@ -387,7 +387,8 @@ async def break_condition(dut):
 
 @cocotb.test()
 async def fault_pin(dut):
-    """fault_ni low: all gates off at once and the fault LED on; the trip stays latched after the pin
+    """fault_ni low (pulled while a high side and a low side are on): all gates off at once and the fault
+    LED on; the trip stays latched after the pin
     returns until CTRL.fault_clear (which does nothing while the pin is still low); then the gates run
     again with the same period and dead time."""
     u = await setup(dut)
@@ -399,6 +400,12 @@ async def fault_pin(dut):
     await u.write(R.CTRL, R.CTRL.encode(en=1))
     await clock_cycles(dut.clk, 2 * p * 3 + 17)
     assert len(g.edges) > 6 and int(dut.led_fault_o.value) == 0
+    for _ in range(12):             # pull the pin while a high side and a low side are on (both paths)
+        if int(dut.gates.value) & 0b000111 and int(dut.gates.value) & 0b111000:
+            break
+        await dut.gates.value_change
+    assert int(dut.gates.value) & 0b000111 and int(dut.gates.value) & 0b111000, \
+        f"no active vector to trip from: gates {int(dut.gates.value):06b}"
     dut.fault_ni.value = 0
     await Timer(1, "ns")                                           # mid-clock: combinational gate-off
     assert int(dut.gates.value) == 0 and int(dut.led_fault_o.value) == 1

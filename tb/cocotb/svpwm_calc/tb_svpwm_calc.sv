@@ -18,7 +18,9 @@
 // edges, as the test does) and checks in its own clock: busy_o, done_o one clock after each start; busy_o,
 // done_o, sector_o, cmp_o, sat_o, err_o === (0, 1, the expected results) 1 ns after the edge that must raise
 // done_o; busy_o, done_o low after an abort and in the clock after. It ends with start_i low for two clocks
-// and toggles play_end_o; fail_n_o counts failed checks, fail_idx_o / fail_what_o / fail_got_o describe the
+// and toggles play_end_o -- after the last record, or after the first record with a failed check (a broken
+// RTL fails in the time of the vectors up to it, not of the whole set: scripts/mutate.py); fail_n_o counts
+// that record's failed checks, fail_idx_o / fail_what_o / fail_got_o describe the
 // first (what: 1 busy_o, done_o one clock after the start, 2 the results, 3 not idle after an abort, 4 an
 // abort's clock after). The checker above sees the inputs the calculator gets (ports or player).
 `timescale 1ns / 1ps
@@ -240,7 +242,7 @@ module tb_svpwm_calc #(
     p_pins      = {PinW{1'b0}};
     playing     = 1'b1;
     @(negedge clk);
-    for (gi = 0; gi < stim_n_i; gi++) begin
+    for (gi = 0; gi < stim_n_i && fail_n_o == 0; gi++) begin   // up to the first vector that fails
       rec = stim[gi];
       if (rec[CPre +: 2] == 2'd1) begin                  // an aborted junk computation
         p_start = 1'b1;

@@ -384,7 +384,8 @@ class CalcTB:
                        f"done_o expected {(lat - 1) * CLK_NS} ns after the start edge)",
                     3: f"busy_o, done_o after the abort at {ctl.get('ak')} clocks != (0, 0)",
                     4: f"busy_o, done_o in the clock after the abort at {ctl.get('ak')} clocks != (0, 0)"}[what]
-            raise AssertionError(f"{name}: {nfail} failed check(s) of the player; the first: vector {i} {vecs[i]} "
+            raise AssertionError(f"{name}: the player stopped at vector {i} of {len(vecs)} ({nfail} failed check(s) "
+                                 f"there), the first: {vecs[i]} "
                                  f"(schedule {ctl}): {what}; RTL outputs (busy, done, sector, Ca, Cb, Cc, sat, err) "
                                  f"= {got}")
         self.check_harness(name)

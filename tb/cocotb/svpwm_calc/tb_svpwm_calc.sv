@@ -202,7 +202,6 @@ module tb_svpwm_calc #(
   logic [3*CntWidth-1:0] exp_cmp;
   logic [3*CntWidth+6:0] got;
   int unsigned           gi, rest, mid;
-  localparam int ClkNs = 10;                 // the clock period (always #5 above)
 
   function automatic logic [3*CntWidth+6:0] outputs();
     return {busy_o, done_o, sector_o, cmp_o, sat_o, err_o};
@@ -229,8 +228,6 @@ module tb_svpwm_calc #(
     fail_got_o  = '0;
   end
 
-  // (the delays below are computed, all > 0: Verilator's ZERODLY only notes it cannot tell)
-  /* verilator lint_off ZERODLY */
   always @(posedge play_i) begin
     $readmemh(stim_file_i, stim, 0, stim_n_i - 1);
     fail_n_o    = 0;
@@ -253,7 +250,8 @@ module tb_svpwm_calc #(
           p_start        = rec[CAst];
           p_pins[5:3]    = rec[CAsec +: 3];
           p_pins[21:6]   = rec[CAang +: 16];
-          #((32'(rec[CAk +: 9]) - 1) * ClkNs + 2);     // 2 ns after falling edge k (before rising edge k)
+          repeat (32'(rec[CAk +: 9]) - 1) @(negedge clk);
+          #2;                                           // 2 ns after falling edge k (before rising edge k)
           p_abort = 1'b1;
           @(negedge clk);
         end
@@ -274,17 +272,19 @@ module tb_svpwm_calc #(
       if (busy_o !== 1'b1 || done_o !== 1'b0) fail(gi, 3'd1);
       p_pins[5:3]  = rec[CSsec +: 3];                     // start_i held high: ignored while busy
       p_pins[21:6] = rec[CSang +: 16];
-      // to 1 ns after the edge that must raise done_o (delays, not edge counts: one wake-up each)
-      rest = (32'(latency_i) - 1) * ClkNs - ClkNs / 2 + 1;
+      // to 1 ns after the edge that must raise done_o (edge counts, then constant delays)
+      rest = 32'(latency_i) - 1;                          // rising edges to the one that must raise done_o
       if (rec[CMid]) begin                                // scramble once more mid-computation
-        mid = 32'(rec[CMk +: 9]) * ClkNs + 2;
-        #(mid);
+        mid = 32'(rec[CMk +: 9]);                         // 2 ns after falling edge k
+        repeat (mid) @(negedge clk);
+        #2;
         p_start      = rec[CMst];
         p_pins[5:3]  = rec[CMsec +: 3];
         p_pins[21:6] = rec[CMang +: 16];
         rest = rest - mid;
       end
-      #(rest);
+      repeat (rest) @(posedge clk);
+      #1;                                                 // 1 ns after it
       for (int ph = 0; ph < 3; ph++) exp_cmp[ph * CntWidth +: CntWidth] = rec[CEc + 16 * ph +: CntWidth];
       if (outputs() !== {1'b0, 1'b1, rec[CEsec +: 3], exp_cmp, rec[CEsat], rec[CEerr]}) fail(gi, 3'd2);
       @(negedge clk);                                     // middle of the done cycle
@@ -297,7 +297,6 @@ module tb_svpwm_calc #(
     playing    = 1'b0;
     play_end_o = !play_end_o;
   end
-  /* verilator lint_on ZERODLY */
 
 endmodule
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_calc: the core's one calculator -- a reference in any input mode -> sector, dwell times, hexagon
-// clamp, compare values (AVR495 Table 4-3), zero-vector placement and the minimum-pulse rule; exactly
-// model/svpwm_model/fixed.py: snap_min_pulse(modulate(...)) per phase.
+// clamp, compare values (AVR495 Table 4-3), zero-vector placement, dead-time compensation and the
+// minimum-pulse rule; exactly model/svpwm_model/fixed.py: snap_min_pulse(modulate(...)) per phase.
 // A microcoded accumulator machine (model/svpwm_model/calc_prog.py generates its program and models it clock
 // by clock; docs/design.md): one adder ACC <- A + B + cin, a 32-word operand RAM (svpwm_calc_ram), the sine
 // ROM, one 16 x 16 multiplier and a microcode ROM (svpwm_ucode) addressed by a step counter. Per clock:
@@ -27,7 +27,8 @@
 // Latency: svpwm_pkg::core_latency(Compact) clocks from start_i to done_o (Compact = 0:
 // svpwm_pkg::calc_latency(0, Dsp)).
 // Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
-// until done_o (the core's sampled registers do), except fabs_i, period_i and thr_i, which may arrive one
+// until done_o (the core's sampled registers do), except fabs_i, period_i, thr_i, hdr_i and hdf_i, which may
+// arrive one
 // clock after start_i (read from step 1 on: model/tests/test_calc_prog.py); start_i is ignored while
 // busy_o; sector_o, cmp_o, sat_o and err_o are the results in the done_o clock only (they change while
 // busy_o); period_i >= 2 thr_i.
@@ -57,6 +58,9 @@ module svpwm_calc #(
   input  logic [1:0]            dpwm_i,       // 0 SVPWM, 1 DPWMMIN, 2 DPWMMAX, 3 DPWM1 (60 deg)
   input  logic [CntWidth-1:0]   period_i,     // half carrier period P the compare values are scaled to
   input  logic [DtWidth:0]      thr_i,        // dead time + minimum pulse (minimum-pulse rule)
+  input  logic [2:0]            isign_i,      // current signs {c, b, a}, 1 = negative (compensation)
+  input  logic [DtWidth-1:0]    hdr_i,        // compensation: C - hdr_i for a positive current (0: off)
+  input  logic [DtWidth-1:0]    hdf_i,        // compensation: C + hdf_i for a negative current (0: off)
   output logic                  busy_o,       // a computation is running
   output logic                  done_o,       // one-cycle pulse: the outputs below are new
   output logic [2:0]            sector_o,     // sector of the result
@@ -84,7 +88,8 @@ module svpwm_calc #(
     assign err_o = 1'b0;
 
     logic unused_full;
-    assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp};
+    assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp,
+                           isign_i, hdr_i, hdf_i};
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
@@ -201,6 +206,15 @@ module svpwm_calc #(
       midneg <= midneg_d;
     end
 
+    // is_cls[j][ph]: phase ph's Table 4-3 code is of class hi (j = 0: code 0), lo (1: code 1) or mid (2: codes
+    // 2, 3); the current-sign conditions c[CIs*] = the sign of that class's phase (dead-time compensation)
+    logic [2:0] is_cls [3];
+    for (genvar ph = 0; ph < 3; ph++) begin : gen_is_cls
+      assign is_cls[0][ph] = sel[2*ph +: 2] == 2'd0;
+      assign is_cls[1][ph] = sel[2*ph +: 2] == 2'd1;
+      assign is_cls[2][ph] = sel[2*ph+1];
+    end
+
     // the condition vector, and below the flags and the compare values, bit by bit in continuous
     // assignments: an always_comb that sets a default and then overwrites single bits of the same vector
     // re-triggers itself in Icarus 11 (a zero-time loop: the simulation hangs)
@@ -213,6 +227,9 @@ module svpwm_calc #(
       else if (k == svpwm_pkg::CDq)        begin : gen_dq   assign c[k] = is_dq; end
       else if (k == svpwm_pkg::CNv1n)      begin : gen_nv1n assign c[k] = !flags_q[svpwm_pkg::FV1n]; end
       else if (k == svpwm_pkg::CNhalf)     begin : gen_nhf  assign c[k] = !flags_q[svpwm_pkg::FHalf]; end
+      else if (k == svpwm_pkg::CIshi)      begin : gen_ishi assign c[k] = |(isign_i & is_cls[0]); end
+      else if (k == svpwm_pkg::CIslo)      begin : gen_islo assign c[k] = |(isign_i & is_cls[1]); end
+      else if (k == svpwm_pkg::CIsmid)     begin : gen_ismd assign c[k] = |(isign_i & is_cls[2]); end
       else                                 begin : gen_zero assign c[k] = 1'b0; end
     end
 
@@ -366,6 +383,8 @@ module svpwm_calc #(
         4'(svpwm_pkg::InFabs):   in_sel = Compact ? 16'd0 : fabs_i;
         4'(svpwm_pkg::InPeriod): in_sel = 16'(period_i);
         4'(svpwm_pkg::InThr):    in_sel = 16'(thr_i);
+        4'(svpwm_pkg::InHdr):    in_sel = 16'(hdr_i);
+        4'(svpwm_pkg::InHdf):    in_sel = 16'(hdf_i);
         default:      in_sel = 16'd0;
       endcase
     end

@@ -7,8 +7,8 @@
 // at the start and end, V7 in the middle, one leg switching per transition.
 // Parameters:
 //   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
-//                continuous SVPWM, valley updates; mode_i, theta_i, v1_i, v2_i, vf_*_i, dpwm_i, upd_i,
-//                presc_i, sync_en_i and sync_i are ignored. The same calculator runs its FREQ-only program
+//                continuous SVPWM, valley updates, no dead-time compensation; mode_i, theta_i, v1_i, v2_i,
+//                vf_*_i, dpwm_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i and isign_i are ignored. The same calculator runs its FREQ-only program
 //                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
@@ -22,9 +22,12 @@
 // POLAR (theta_i + m_i), AB (v1_i, v2_i = v_alpha, v_beta), DQ (v1_i, v2_i = v_d, v_q + theta_i); a vector
 // beyond the hexagon is clamped to its boundary keeping its angle (sat_o); dpwm_i places the zero vectors
 // (SVPWM or bus-clamped DPWM). Invalid mode / update codes: zero vector / valley update + cfg_err_o.
+// Dead-time compensation (dtc_en_i): each phase's compare value moves by half the dead time against the
+// volt-seconds the dead time costs at that phase's current sign (isign_i): C - ceil(dt / 2) for a positive
+// current, C + ceil(dt / 2) for a negative one, before the minimum-pulse rule (fixed.dtc_shift).
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, mode_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
+// vf_*, dpwm_i, mode_i, dtc_en_i, isign_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
 // calculator's program + load 1: 247, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and
@@ -72,6 +75,9 @@ module svpwm_core #(
   input  logic [CntWidth-1:0]         period_i,        // half carrier period in clocks
   input  logic [DtWidth-1:0]          dt_i,            // dead time in clocks (locked by lock_i)
   input  logic [DtWidth-1:0]          mp_i,            // minimum gate pulse in clocks (locked)
+  input  logic                        dtc_en_i,        // dead-time compensation on (sampled with the reference)
+  input  logic [2:0]                  isign_i,         // {c, b, a} phase current signs, 1 = negative (into
+                                                       // the leg), sampled with the reference
   input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
   input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
   input  logic                        sync_i,          // another core's sync_o (same clock domain)
@@ -329,6 +335,8 @@ module svpwm_core #(
   logic [2:0]  mode_q;
   logic [15:0] s0_d, s0_q, s1_d, s1_q, s2_d, s2_q;
   logic [1:0]  dpwm_q;
+  logic        dtc_q;
+  logic [2:0]  isign_q;
   logic        in_vf, in_xy;
 
   assign in_vf = !Compact && mode_i == 3'(svpwm_pkg::ModeVf);
@@ -344,12 +352,16 @@ module svpwm_core #(
       s1_q   <= '0;
       s2_q   <= '0;
       dpwm_q <= '0;
+      dtc_q   <= 1'b0;
+      isign_q <= '0;
     end else if (event_now) begin
       mode_q <= mode_i;
       s0_q   <= s0_d;
       s1_q   <= s1_d;
       s2_q   <= s2_d;
       dpwm_q <= dpwm_i;
+      dtc_q   <= !Compact && dtc_en_i;
+      isign_q <= isign_i;
     end
   end
 
@@ -390,15 +402,24 @@ module svpwm_core #(
   logic                  duty_busy, duty_sat, duty_err;
   logic [CntWidth-1:0]   calc_period_d, calc_period_q;
   logic [DtWidth:0]      calc_thr_d, calc_thr_q;
+  logic [DtWidth-1:0]    calc_hdr_d, calc_hdr_q, calc_hdf_d, calc_hdf_q, hd_dt;
+
+  // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the dead time the
+  // update is computed for, 0 when off
+  assign hd_dt = ev_valley_q ? dt_next_q : dt_q;
 
   // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
   // dead time it comes with; a peak update for the active period and dead time
   always_comb begin
     calc_period_d = calc_period_q;
     calc_thr_d    = calc_thr_q;
+    calc_hdr_d    = calc_hdr_q;
+    calc_hdf_d    = calc_hdf_q;
     if (start_q) begin
       calc_period_d = ev_valley_q ? period_next_q : period_act;
       calc_thr_d    = ev_valley_q ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : {1'b0, dt_q} + {1'b0, mp_q};
+      calc_hdr_d    = dtc_q ? DtWidth'(({1'b0, hd_dt} + 1'b1) >> 1) : '0;
+      calc_hdf_d    = calc_hdr_d;
     end
   end
 
@@ -432,6 +453,9 @@ module svpwm_core #(
     // read them at step 2 at the earliest: model/tests/test_calc_prog.py checks it)
     .period_i   (Compact ? period_next_q : calc_period_q),
     .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_q),
+    .isign_i    (isign_q),
+    .hdr_i      (calc_hdr_q),
+    .hdf_i      (calc_hdf_q),
     .busy_o     (duty_busy),
     .done_o     (snap_done),
     .sector_o   (duty_sector),
@@ -514,6 +538,8 @@ module svpwm_core #(
       pending_q      <= 1'b0;
       calc_period_q  <= CntWidth'(MinPeriod);
       calc_thr_q     <= '0;
+      calc_hdr_q     <= '0;
+      calc_hdf_q     <= '0;
       freq_q         <= '0;
       period_next_q  <= CntWidth'(MinPeriod);
       dt_next_q      <= '0;
@@ -543,6 +569,8 @@ module svpwm_core #(
       pending_q      <= pending_d;
       calc_period_q  <= calc_period_d;
       calc_thr_q     <= calc_thr_d;
+      calc_hdr_q     <= calc_hdr_d;
+      calc_hdf_q     <= calc_hdf_d;
       freq_q         <= freq_d;
       period_next_q  <= period_next_d;
       dt_next_q      <= dt_next_d;

@@ -8,9 +8,9 @@
 package svpwm_pkg;
 
   // clocks from svpwm_calc start_i to done_o, per program (calc_prog.calc_latency)
-  localparam int CalcLatencyFullDsp = 246;
+  localparam int CalcLatencyFullDsp = 251;
   localparam int CalcLatencyCompactSerial = 236;
-  localparam int CalcLatencyFullSerial = 463;
+  localparam int CalcLatencyFullSerial = 468;
   localparam int CalcLatencyCompactDsp = 138;
   // smallest MinPeriod default of the full core (the shortest half period the tests exercise)
   localparam int MinPeriodBase = 48;
@@ -130,6 +130,8 @@ package svpwm_pkg;
   localparam int InFabs = 7;
   localparam int InPeriod = 8;
   localparam int InThr = 9;
+  localparam int InHdr = 10;
+  localparam int InHdf = 11;
   localparam int RomOff = 0;
   localparam int RomI = 1;
   localparam int RomI1 = 2;
@@ -171,6 +173,9 @@ package svpwm_pkg;
   localparam int CDq = 28;
   localparam int CNv1n = 29;
   localparam int CNhalf = 30;
+  localparam int CIshi = 18;
+  localparam int CIslo = 19;
+  localparam int CIsmid = 20;
   localparam int ModeFreq = 0;
   localparam int ModeVf = 1;
   localparam int ModePolar = 2;

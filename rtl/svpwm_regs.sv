@@ -82,7 +82,9 @@ module svpwm_regs #(
   input  logic [15:0]  period_act_i,           // PERIOD_ACT.period: RO (live) (not in the compact variant)
   input  logic [15:0]  cmp_a_i,                // CMP_A.cmp: RO (live) (not in the compact variant)
   input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live) (not in the compact variant)
-  input  logic [15:0]  cmp_c_i                 // CMP_C.cmp: RO (live) (not in the compact variant)
+  input  logic [15:0]  cmp_c_i,                // CMP_C.cmp: RO (live) (not in the compact variant)
+  output logic         dtc_en_o,               // DTC.en: RW (not in the compact variant)
+  output logic [2:0]   dtc_isign_o             // DTC.isign: RW (not in the compact variant)
 );
 
   if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
@@ -117,6 +119,7 @@ module svpwm_regs #(
   localparam logic [AddrWidth-3:0] IdxCmpC = (AddrWidth-2)'(21);
   localparam logic [AddrWidth-3:0] IdxClkHz = (AddrWidth-2)'(22);
   localparam logic [AddrWidth-3:0] IdxFeatures = (AddrWidth-2)'(23);
+  localparam logic [AddrWidth-3:0] IdxDtc = (AddrWidth-2)'(24);
 
   // bit of each register in the one-hot register select
   localparam int SelId = 0;
@@ -143,7 +146,8 @@ module svpwm_regs #(
   localparam int SelCmpC = 21;
   localparam int SelClkHz = 22;
   localparam int SelFeatures = 23;
-  localparam int NumRegs = 24;
+  localparam int SelDtc = 24;
+  localparam int NumRegs = 25;
 
   logic [AddrWidth-3:0] idx;
   logic                 wr, rd;
@@ -180,6 +184,7 @@ module svpwm_regs #(
       IdxCmpC: sel_d[SelCmpC] = 1'b1;
       IdxClkHz: sel_d[SelClkHz] = 1'b1;
       IdxFeatures: sel_d[SelFeatures] = 1'b1;
+      IdxDtc: sel_d[SelDtc] = 1'b1;
       default: ;  // no register here: no select bit
     endcase
   end
@@ -305,6 +310,8 @@ module svpwm_regs #(
   logic [15:0]  vf_mmax_q;
   logic [9:0]   mp_q;
   logic [7:0]   presc_q;
+  logic         dtc_en_q;
+  logic [2:0]   dtc_isign_q;
   if (!Compact) begin : gen_full
     logic         ctrl_sync_en_d, ctrl_sync_en_wr;
     logic [2:0]   ctrl_mode_d, ctrl_mode_wr;
@@ -319,6 +326,8 @@ module svpwm_regs #(
     logic [15:0]  vf_mmax_d, vf_mmax_wr;
     logic [9:0]   mp_d, mp_wr;
     logic [7:0]   presc_d, presc_wr;
+    logic         dtc_en_d, dtc_en_wr;
+    logic [2:0]   dtc_isign_d, dtc_isign_wr;
     assign ctrl_sync_en_wr = be_i[0] ? wdata_i[1] : ctrl_sync_en_q;
     assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
     assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
@@ -332,6 +341,8 @@ module svpwm_regs #(
     assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
     assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
     assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
+    assign dtc_en_wr = be_i[0] ? wdata_i[0] : dtc_en_q;
+    assign dtc_isign_wr = be_i[0] ? wdata_i[6:4] : dtc_isign_q[2:0];
 
     always_comb begin
       ctrl_sync_en_d = ctrl_sync_en_q;
@@ -347,6 +358,8 @@ module svpwm_regs #(
       vf_mmax_d = vf_mmax_q;
       mp_d = mp_q;
       presc_d = presc_q;
+      dtc_en_d = dtc_en_q;
+      dtc_isign_d = dtc_isign_q;
       if (wr && sel[SelCtrl]) begin
         ctrl_sync_en_d = ctrl_sync_en_wr;
         ctrl_mode_d = ctrl_mode_wr;
@@ -378,6 +391,10 @@ module svpwm_regs #(
       if (wr && sel[SelPresc]) begin
         presc_d = presc_wr;
       end
+      if (wr && sel[SelDtc]) begin
+        dtc_en_d = dtc_en_wr;
+        dtc_isign_d = dtc_isign_wr;
+      end
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -395,6 +412,8 @@ module svpwm_regs #(
         vf_mmax_q <= 16'h0;
         mp_q <= 10'h0;
         presc_q <= 8'h0;
+        dtc_en_q <= 1'h0;
+        dtc_isign_q <= 3'h0;
       end else begin
         ctrl_sync_en_q <= ctrl_sync_en_d;
         ctrl_mode_q <= ctrl_mode_d;
@@ -409,6 +428,8 @@ module svpwm_regs #(
         vf_mmax_q <= vf_mmax_d;
         mp_q <= mp_d;
         presc_q <= presc_d;
+        dtc_en_q <= dtc_en_d;
+        dtc_isign_q <= dtc_isign_d;
       end
     end
   end else begin : gen_compact
@@ -425,6 +446,8 @@ module svpwm_regs #(
     assign vf_mmax_q = 16'h0;
     assign mp_q = 10'h0;
     assign presc_q = 8'h0;
+    assign dtc_en_q = 1'h0;
+    assign dtc_isign_q = 3'h0;
     // live inputs and data bits only the full variant reads
     logic unused_compact;
     assign unused_compact = ^{carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i};
@@ -434,7 +457,7 @@ module svpwm_regs #(
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h2, 16'h3};
+  assign rd_version = {16'h2, 16'h4};
   logic [31:0] rd_config;
   assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
@@ -479,6 +502,8 @@ module svpwm_regs #(
   assign rd_clk_hz = {32'(ClkHz)};
   logic [31:0] rd_features;
   assign rd_features = {31'h0, Compact};
+  logic [31:0] rd_dtc;
+  assign rd_dtc = Compact ? 32'h0 : {25'h0, dtc_isign_q, 3'h0, dtc_en_q};
 
   // the selected word (0 where no register is selected): AND-OR of the one-hot select as a tree
   // of 4-input LUTs, kept so that synthesis does not chain it: a pair of registers (select and
@@ -507,17 +532,21 @@ module svpwm_regs #(
   assign rd_pair10 = ({32{sel[SelCmpB]}} & rd_cmp_b) | ({32{sel[SelCmpC]}} & rd_cmp_c);
   (* keep *) logic [31:0] rd_pair11;
   assign rd_pair11 = ({32{sel[SelClkHz]}} & rd_clk_hz) | ({32{sel[SelFeatures]}} & rd_features);
+  (* keep *) logic [31:0] rd_pair12;
+  assign rd_pair12 = ({32{sel[SelDtc]}} & rd_dtc);
   (* keep *) logic [31:0] rd_grp0;
   assign rd_grp0 = rd_pair0 | rd_pair1 | rd_pair2 | rd_pair3;
   (* keep *) logic [31:0] rd_grp1;
   assign rd_grp1 = rd_pair4 | rd_pair5 | rd_pair6 | rd_pair7;
   (* keep *) logic [31:0] rd_grp2;
   assign rd_grp2 = rd_pair8 | rd_pair9 | rd_pair10 | rd_pair11;
+  (* keep *) logic [31:0] rd_grp3;
+  assign rd_grp3 = rd_pair12;
   logic [31:0] rdata_d, rdata_q;
 
   always_comb begin
     rdata_d = rdata_q;
-    if (rd) rdata_d = rd_grp0 | rd_grp1 | rd_grp2;
+    if (rd) rdata_d = rd_grp0 | rd_grp1 | rd_grp2 | rd_grp3;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -552,6 +581,8 @@ module svpwm_regs #(
   assign dt_o = dt_q;
   assign mp_o = mp_q;
   assign presc_o = presc_q;
+  assign dtc_en_o = dtc_en_q;
+  assign dtc_isign_o = dtc_isign_q;
 
   // data bits no writable field uses; the byte offset within a word
   logic unused_bits;

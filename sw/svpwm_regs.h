@@ -21,7 +21,7 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x3
+#define SVPWM__VERSION__MINOR_reset 0x4
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16
@@ -247,6 +247,16 @@ extern "C" {
 #define SVPWM__FEATURES__COMPACT_bw 1
 #define SVPWM__FEATURES__COMPACT_reset 0x0
 
+// reg - svpwm::DTC
+#define SVPWM__DTC__EN_bm 0x1
+#define SVPWM__DTC__EN_bp 0
+#define SVPWM__DTC__EN_bw 1
+#define SVPWM__DTC__EN_reset 0x0
+#define SVPWM__DTC__ISIGN_bm 0x70
+#define SVPWM__DTC__ISIGN_bp 4
+#define SVPWM__DTC__ISIGN_bw 3
+#define SVPWM__DTC__ISIGN_reset 0x0
+
 // addrmap - svpwm
 typedef struct __attribute__ ((__packed__)) {
     uint32_t ID;
@@ -273,10 +283,11 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t CMP_C;
     uint32_t CLK_HZ;
     uint32_t FEATURES;
+    uint32_t DTC;
 } svpwm_t;
 
 
-static_assert(sizeof(svpwm_t) == 0x60, "Packing error");
+static_assert(sizeof(svpwm_t) == 0x64, "Packing error");
 
 #ifdef __cplusplus
 }

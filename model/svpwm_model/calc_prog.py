@@ -95,7 +95,7 @@ RC_NONE, RC_C, RC_SW, RC_SW1, RC_SNAP, RC_DPWM, RC_MERGE = range(7)
 # asrc
 AS_NONE, AS_ROM, AS_PROD, AS_IN, AS_SHR9, AS_SHR1, AS_Q, AS_ANG = range(8)
 # isel: the calculator's held inputs
-IN_M, IN_THETA, IN_V1, IN_V2, IN_BOOST, IN_SLOPE, IN_MMAX, IN_FABS, IN_PERIOD, IN_THR = range(10)
+IN_M, IN_THETA, IN_V1, IN_V2, IN_BOOST, IN_SLOPE, IN_MMAX, IN_FABS, IN_PERIOD, IN_THR, IN_HDR, IN_HDF = range(12)
 IN_SIGNED = (IN_V1, IN_V2)
 # psh: product shift (rounding: cin mode CIN_RND adds bit k - 1)
 PSH = (8, 14, 15, 0)
@@ -109,6 +109,9 @@ CIN_0, CIN_1, CIN_BINV, CIN_RND = range(4)
  F_S1, F_S2, F_S3, F_S4) = range(18)
 N_FLAGS = 18
 C_VF, C_XY, C_ERR, C_MIDSGN, C_DQ, C_NV1N, C_NHALF = range(24, 31)
+# the current sign (isign, 1 = negative) of the phase whose Table 4-3 code is of class OUT_HI / OUT_LO / OUT_MID
+C_ISHI, C_ISLO, C_ISMID = range(18, 21)
+C_IS = {OUT_HI: C_ISHI, OUT_LO: C_ISLO, OUT_MID: C_ISMID}    # the current-sign condition of each class
 
 # RAM map (32 words; the ZERO words read 0 and are never written; pairs / blocks are read with condition bits
 # ORed into the address)
@@ -121,7 +124,8 @@ R_P2H = 6            # 2P - hthr
 R_S = 7              # T1 + T2
 R_T1 = 8             # {T1 polar, T1 xyz, 0, 0}; after the merge {P - hi, -lo, 0, 0} (R_DP)
 R_DP = 8
-R_T2 = 12            # {T2 polar, T2 xyz, 0, 0}
+R_T2 = 12            # {T2 polar, T2 xyz, 0, 0}; after the clamp {-hdr, hdf} (R_DTC)
+R_DTC = 12
 R_ABS = 16           # {|X|, |Z|, |Y|, -}
 R_X, R_Y, R_Z = 19, 20, 21
 R_GH = 22            # {0xFFFF, g + h}
@@ -337,8 +341,8 @@ class Builder:
             for f in fl:                                  # flags: set one clock after their step
                 if f in self.ft:
                     need = max(need, self.ft[f] + (5 if rc in (RC_SW, RC_SW1) else 4))   # (sw_q: one more)
-            if rc == RC_C and b.get("ci") == C_MIDSGN:
-                need = max(need, self.sec_t + 4)
+            if rc == RC_C and b.get("ci") in (C_MIDSGN, C_ISHI, C_ISLO, C_ISMID):
+                need = max(need, self.sec_t + 4)          # (from the Table 4-3 codes: sel)
         if b.get("binv") == BINV_C:
             for f in self._flags_of(b["bci"]):
                 if f in self.ft:
@@ -508,10 +512,11 @@ class Machine:
         dpwm = 0 if self.prog.compact else inp.get("dpwm", 0)
         ins = [inp.get("m", 0), inp.get("theta", 0), inp.get("v1", 0), inp.get("v2", 0),
                inp.get("vf_boost", 0), inp.get("vf_slope", 0), inp.get("vf_mmax", 0), inp.get("fabs", 0),
-               inp["period"], inp["thr"]]
+               inp["period"], inp["thr"], inp.get("hdr", 0), inp.get("hdf", 0)]
+        isign = 0 if self.prog.compact else inp.get("isign", 0) & 7
         if self.prog.compact:
-            ins = [ins[0]] + [0] * 7 + ins[8:]
-        ins += [0] * 6
+            ins = [ins[0]] + [0] * 7 + ins[8:10] + [0, 0]
+        ins += [0] * 4
         ram = [0] * RAM_WORDS
         for a, v in RAM_INIT.items():
             ram[a] = v
@@ -559,6 +564,8 @@ class Machine:
             c[C_VF], c[C_XY], c[C_ERR], c[C_DQ] = int(is_vf), int(is_ab or is_dq), int(is_err), int(is_dq)
             c[C_MIDSGN] = int(midneg) ^ flags[F_FIRST]
             c[C_NV1N], c[C_NHALF] = 1 - flags[F_V1N], 1 - flags[F_HALF]
+            for cls, ci in C_IS.items():
+                c[ci] = int(any((isign >> ph) & 1 and sel_class(sel[ph]) == cls for ph in range(3)))
             if k == 0:
                 # idle word: only its next fields matter
                 a_val, b_val, s = 0, 0, 0
@@ -874,9 +881,14 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         addr = {OUT_HI: R_ABS, OUT_LO: R_ABS + 1, OUT_MID: R_ABS + 2}[k]
         g.write(addr)
         res.append((k, addr))
-    # ---- zero-vector placement (fixed.dpwm_shift): every C + sh ---------------------------------------------
+    # ---- zero-vector placement (fixed.dpwm_shift): every C + sh, and the dead-time compensation
+    # (fixed.dtc_shift): + hdf for a negative current, - hdr otherwise (the phase of each class by its sign) ---
     if not compact:
         g.cmp(inp(IN_PERIOD, inv=True, cin=CIN_0), F_DP60, shift=True)   # 2 mid - P - 1 < 0: 2 mid <= P
+        g.load(inp(IN_HDR, inv=True))
+        g.write(R_DTC)                                    # - hdr
+        g.load(inp(IN_HDF))
+        g.write(R_DTC + 1)                                # hdf
         g.load(inp(IN_PERIOD))
         g.add(ram(R_ABS, inv=True))                       # P - hi
         g.write(R_DP)
@@ -887,6 +899,7 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         for k, addr in res:
             g.load(ram(addr))
             g.add(ram(R_A))
+            g.add(ram(R_DTC, rc=RC_C, ci=C_IS[k]))
             g.write(addr)
     # ---- minimum pulse (fixed.snap_min_pulse), thr = dt + mp: 0 / thr below thr, P / P - hthr near P ------
     g.load(inp(IN_THR))
@@ -939,5 +952,5 @@ def expect(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int],
             inp.get("mode", 0), inp.get("sector", 0), inp.get("a16", 0), P, freq=inp.get("freq", 0),
             m=inp.get("m", 0), theta=inp.get("theta", 0), v1=inp.get("v1", 0), v2=inp.get("v2", 0),
             vf_boost=inp.get("vf_boost", 0), vf_slope=inp.get("vf_slope", 0), vf_mmax=inp.get("vf_mmax", 0),
-            dpwm=inp.get("dpwm", 0))
+            dpwm=inp.get("dpwm", 0), isign=inp.get("isign", 0) & 7, hdr=inp.get("hdr", 0), hdf=inp.get("hdf", 0))
     return sector, tuple(fixed.snap_min_pulse(x, P, thr) for x in c), sat, err

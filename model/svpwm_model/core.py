@@ -50,6 +50,8 @@ class Inputs:
     dpwm: int = fixed.DPWM_OFF
     upd: int = fixed.UPD_VALLEY
     presc: int = 0
+    isign: int = 0          # current signs {c, b, a}, 1 = negative (dead-time compensation)
+    dtc: int = 0            # 1: dead-time compensation on (not in the compact core)
 
 
 @dataclass(frozen=True)
@@ -104,7 +106,7 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
 
 def _compact(u: Inputs) -> Inputs:
     """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler."""
-    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0)
+    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0)
 
 
 def _upd_code(upd: int) -> int:
@@ -166,15 +168,18 @@ class CoreModel:
             th_t = to
             return theta
 
-        def compute(u: Inputs, s: int, period: int, thr: int, at_peak: bool) -> Update:
+        def compute(u: Inputs, s: int, period: int, dt: int, mp: int, at_peak: bool) -> Update:
             nonlocal f_cur
             th = advance(s)                     # theta(S): the old frequency word up to S
             f_cur, _ = fixed.clamp_freq(u.freq)  # the new one from S on
             sector, angle = th >> fixed.PHASE_WIDTH, th & ((1 << fixed.PHASE_WIDTH) - 1)
             a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
+            thr = dt + mp
+            hdr, hdf = fixed.dtc_amounts(dt, dt, bool(u.dtc))
             sec, cmp, sat, err = fixed.modulate(u.mode, sector, a16, period, freq=f_cur, m=u.m, theta=u.theta,
                                                 v1=u.v1, v2=u.v2, vf_boost=u.vf_boost, vf_slope=u.vf_slope,
-                                                vf_mmax=u.vf_mmax, dpwm=u.dpwm)
+                                                vf_mmax=u.vf_mmax, dpwm=u.dpwm, isign=u.isign & 7, hdr=hdr,
+                                                hdf=hdf)
             cmp = tuple(fixed.snap_min_pulse(c, period, thr) for c in cmp)
             if u.mode in (fixed.MODE_FREQ, fixed.MODE_POLAR):
                 m_used = u.m
@@ -211,7 +216,7 @@ class CoreModel:
                 # the core runs (samples, takes) up to the stop clock itself: its run register
                 if ev and (stop_cycle is None or s - 1 < stop_cycle + fixed.START_DELAY):
                     u_pk = pget(n) if not last else get(n - 1)   # the ports hold the last inputs
-                    up = compute(u_pk, s, p_cur, dt_cur + mp_cur, True)
+                    up = compute(u_pk, s, p_cur, dt_cur, mp_cur, True)
                     if stop_cycle is None or up.load - 1 < stop_cycle + fixed.START_DELAY:   # taken while running
                         r.updates.append(up)
                         active = up
@@ -230,7 +235,7 @@ class CoreModel:
                 cnt = 0 if cnt >= presc else cnt + 1
             upd, presc = _upd_code(u.upd), u.presc
             if ev:
-                up = compute(u, t + 2 * p_cur - lead, p_next, u.dt + u.mp, False)
+                up = compute(u, t + 2 * p_cur - lead, p_next, u.dt, u.mp, False)
                 r.updates.append(up)
                 active = up
             t += 2 * p_cur

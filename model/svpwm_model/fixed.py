@@ -103,7 +103,8 @@ def clamp_freq(f: int, fmax: int = FREQ_MAX) -> tuple[int, bool]:
 
 
 def snap_min_pulse(c: int, period: int, thr: int) -> int:
-    """Minimum-pulse rule on one compare value (rtl/svpwm_minpulse.sv), thr = dead time + minimum pulse.
+    """Minimum-pulse rule on one compare value (the last part of svpwm_calc's program), thr = dead time +
+    minimum pulse; c may lie outside [0, P] (dead-time compensation): below 0 it gives 0, above P it gives P.
 
     A pole pulse shorter than thr would reach its gate shorter than the minimum pulse (the dead time
     eats dt of it), so such pulses are dropped or widened to thr, whichever is nearer:
@@ -189,6 +190,28 @@ def dpwm_shift(c: tuple[int, int, int], period: int, dpwm: int) -> tuple[int, in
     else:
         sh = period - hi
     return tuple(x + sh for x in c)
+
+
+def dtc_amounts(dt_r: int, dt_f: int, en: bool) -> tuple[int, int]:
+    """Dead-time compensation amounts (hdr, hdf) in compare-value clocks: half of each dead time, rounded
+    up, hdr = (dt_r + 1) >> 1, hdf = (dt_f + 1) >> 1; (0, 0) when the compensation is off."""
+    if not en:
+        return 0, 0
+    return (dt_r + 1) >> 1, (dt_f + 1) >> 1
+
+
+def dtc_shift(c: tuple[int, int, int], isign: int, hdr: int, hdf: int) -> tuple[int, int, int]:
+    """Pulse-based dead-time compensation (applied after the zero-vector placement, before the minimum-pulse
+    rule). ``isign`` bit k (phase a = bit 0) is the sign of phase k's current, 1 = negative (flowing into the
+    leg). During a dead time both switches of a leg are off and the current alone sets the pole through the
+    free-wheeling diodes: a positive current holds the pole low until the delayed high side turns on, so the
+    high pulse loses dt_r (the rising-edge dead time); a negative current holds it high until the delayed low
+    side turns on, so it gains dt_f. The high pulse is 2 (P - C) clocks, so C moves by half the dead time:
+    C - hdr for a positive current, C + hdf for a negative one. The result may leave [0, P]: the
+    minimum-pulse rule (snap_min_pulse) maps it back. With the compensation the pole *voltages* keep their
+    order (each moves by about dt / 2 the same way); the switch commands of two phases within a dead time of
+    each other and with opposite currents may cross."""
+    return tuple(x + (hdf if (isign >> ph) & 1 else -hdr) for ph, x in enumerate(c))
 
 
 def compare_values(sector: int, a16: int, m: int, period: int, dpwm: int = DPWM_OFF) -> tuple[int, int, int]:
@@ -303,9 +326,11 @@ def dq_dwell(theta: int, v_d: int, v_q: int) -> tuple[int, int, int]:
 
 def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int = 0, m: int = 0,
              theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0, vf_slope: int = 0,
-             vf_mmax: int = 0, dpwm: int = DPWM_OFF) -> tuple[int, tuple[int, int, int], bool, bool]:
+             vf_mmax: int = 0, dpwm: int = DPWM_OFF, isign: int = 0, hdr: int = 0,
+             hdf: int = 0) -> tuple[int, tuple[int, int, int], bool, bool]:
     """The whole compute path for one update: reference (any mode) -> sector, dwell times -> hexagon clamp
-    -> compare values (Table 4-3) -> zero-vector placement. Returns (sector, (C_a, C_b, C_c), sat, cfg_err).
+    -> compare values (Table 4-3) -> zero-vector placement -> dead-time compensation (dtc_shift; hdr = hdf =
+    0: none). Returns (sector, (C_a, C_b, C_c), sat, cfg_err).
 
     acc_sector / acc_a16: the phase accumulator (freq and vf modes). An unknown mode gives the zero vector
     (T1 = T2 = 0, all phases 50 %) and cfg_err. The minimum-pulse rule (snap_min_pulse) comes after this."""
@@ -322,7 +347,8 @@ def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int
     else:
         sector, t1, t2, err = 0, 0, 0, True
     t1, t2, sat = hex_clamp(t1, t2)
-    return sector, dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm), sat, err
+    c = dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm)
+    return sector, dtc_shift(c, isign, hdr, hdf), sat, err
 
 
 def input_slots(mode: int, *, m: int = 0, theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0,

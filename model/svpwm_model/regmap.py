@@ -12,7 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 DATA_WIDTH = 32
-SIZE = 0x60  # bytes; higher addresses read 0
+SIZE = 0x64  # bytes; higher addresses read 0
 VARIANT_PARAM = "Compact"  # svpwm_regs parameter: 1 = compact variant
 
 
@@ -85,7 +85,7 @@ REGISTERS: tuple[Register, ...] = (
         Field("id", 0, 32, "const", 0x53565057, compact=True),
     ), compact=True),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x3, compact=True),
+        Field("minor", 0, 16, "const", 0x4, compact=True),
         Field("major", 16, 16, "const", 0x2, compact=True),
     ), compact=True),
     Register("CONFIG", 0x08, (
@@ -176,6 +176,10 @@ REGISTERS: tuple[Register, ...] = (
     Register("FEATURES", 0x5C, (
         Field("compact", 0, 1, "const", 0x0, rst_param="Compact", compact=True),
     ), compact=True),
+    Register("DTC", 0x60, (
+        Field("en", 0, 1, "rw", 0x0, port="dtc_en_o"),
+        Field("isign", 4, 3, "rw", 0x0, port="dtc_isign_o"),
+    )),
 )
 
 BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}
@@ -214,3 +218,4 @@ CMP_B = BY_NAME["CMP_B"]
 CMP_C = BY_NAME["CMP_C"]
 CLK_HZ = BY_NAME["CLK_HZ"]
 FEATURES = BY_NAME["FEATURES"]
+DTC = BY_NAME["DTC"]

@@ -40,6 +40,10 @@ def _vec(rng: random.Random, compact: bool) -> dict:
                  theta=rng.randint(0, 65535), v1=rng.choice(VS + (rng.randint(-32768, 32767),) * 3),
                  v2=rng.choice(VS + (rng.randint(-32768, 32767),) * 3), vf_boost=rng.randint(0, 65535),
                  vf_slope=rng.randint(0, 65535), vf_mmax=rng.randint(0, 65535), dpwm=rng.randint(0, 3))
+        if rng.random() < 0.5:                                     # dead-time compensation (DtWidth 10)
+            hd = min(thr, 512)
+            d.update(isign=rng.randint(0, 7), hdr=rng.choice([0, 1, hd, rng.randint(0, 512)]),
+                     hdf=rng.choice([0, 1, hd, rng.randint(0, 512)]))
     return d
 
 
@@ -64,7 +68,15 @@ def _directed(compact: bool):
                                    mode=mode, dpwm=dpwm, v1=v1, v2=v2, theta=theta, freq=f,
                                    fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
                                    vf_boost=0x1000, vf_slope=0xFFFF if v1 < 0 else 0x0100, vf_mmax=0xFFFF)
-
+    # dead-time compensation: every current-sign pattern in every sector, compare values pushed below 0 and
+    # above P (m near 0 and at the vertex, DPWM clamping a phase to a rail), the largest amounts
+    for isign in range(8):
+        for sector in range(6):
+            for m in (0, 0x4000, M_VERTEX):
+                for dpwm in range(4):
+                    for hdr, hdf, thr in ((3, 5, 10), (24, 24, 48), (512, 1, 1023), (0, 512, 0)):
+                        yield dict(period=1536, thr=thr, sector=sector, a16=0x3000, m=m, dpwm=dpwm,
+                                   isign=isign, hdr=hdr, hdf=hdf)
 
 @pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
 def test_directed(compact, dsp):
@@ -150,7 +162,7 @@ def test_idle_word_equals_word_1(dsp):
 @pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
 def test_input_operand_codes(dsp):
     """Every word of the engine's programs (Compact = 0) whose operand is an input (src = AS_IN) has an input
-    code 0..9: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
+    code 0..11: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
     product shift) only reaches in_q when the next step does not read it, which is why
     scripts/mutate_equivalent.json lists the mutant of that default as equivalent; a generator change that
     breaks this fails here (and that mutant must then be killed, not listed)."""
@@ -162,7 +174,7 @@ def test_input_operand_codes(dsp):
 
     reads = [(k, f(w, "opnd")) for k, w in enumerate(words) if f(w, "src") == cp.AS_IN]
     assert len(reads) > 10                                       # (inputs are read)
-    assert all(code & 0xF <= cp.IN_THR for _, code in reads), reads
+    assert all(code & 0xF <= cp.IN_HDF for _, code in reads), reads
 
 
 def test_misuse_is_refused():

@@ -31,7 +31,10 @@ def test_regmap_consistent():
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
     # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter; map 2.3: the same offsets
-    assert (R.FEATURES.addr, R.VERSION.reset, R.SIZE) == (0x5C, 0x0002_0003, 0x60)
+    assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0002_0004)
+    # DTC (map 2.4): appended after FEATURES, the full variant only
+    assert (R.DTC.addr, R.SIZE, R.DTC.encode(en=1, isign=5)) == (0x60, 0x64, 0x51)
+    assert not R.DTC.compact
     f = R.FEATURES.field("compact")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param, f.compact) == ("const", 0, 1, 0, R.VARIANT_PARAM, True)
     assert R.VARIANT_PARAM == "Compact" and R.FEATURES.mask() == 1

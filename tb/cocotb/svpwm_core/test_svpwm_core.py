@@ -19,18 +19,20 @@ valley updates, one serial calculator with a longer lead). Both run every test a
 from __future__ import annotations
 
 import math
+import random
 from dataclasses import replace
 from pathlib import Path
 
 import cocotb
 import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
+from cocotb.utils import get_sim_time
 
 from simrun import cocotb_tests, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CoreTB
+from svpwm_tb import CLK_NS, CoreTB
 from clocks import clock_cycles
 
 F_CLK = fixed.F_CLK_DEFAULT
@@ -388,6 +390,76 @@ async def narrow_freq_word(dut):
     ms = {u.m for u in exp.updates[:n_vf]}
     assert len(ms) > 10, f"V/f: m took only {len(ms)} values"
     assert sorted(set(rtl.sector[n_vf:])) == [0, 1, 2, 3, 4, 5], "FREQ mode: not every sector"
+
+
+@cocotb.test()
+async def dtc_sign_changes(dut):
+    """Dead-time compensation with the current signs changing at every point of a period: double update
+    (valley and peak samples), isign_i changed on random clocks of every half period and on the clocks
+    around each sample point (two before, one before = the sampled clock, the sample clock itself), dtc_en_i
+    switched off and on again, dead time 24 (hd 12) with a minimum pulse, m from 0.05 to 1.0 so that the
+    compensated values leave [0, P] and the minimum-pulse rule snaps them; == model (which takes isign as
+    sampled in the clock before each sample point). The compact core has no compensation: its model ignores
+    dtc and isign, and so must the RTL."""
+    tb = CoreTB(dut)
+    rng = random.Random(1126)
+    P, lead = 600, tb.model.lead
+    n = 48 if ICARUS else 160
+    ms = [MW(0.05), MW(0.5), MW(0.98), MW(1.0)]
+    base = lambda k, sgn: Inputs(freq=FW(700.0), m=ms[(k // 12) % 4], period=P, dt=24, mp=3,   # noqa: E731
+                                 upd=fixed.UPD_BOTH, dtc=int(k % 40 < 32), isign=sgn)
+    t = lambda k: fixed.START_DELAY + 2 * P * k                      # noqa: E731  (the period is constant)
+    s_peak = lambda k: t(k) + P - lead                               # noqa: E731  sample points (S)
+    s_valley = lambda k: t(k + 1) - lead                             # noqa: E731
+    busy = {t(k) for k in range(n + 1)} | {t(k) + P for k in range(n + 1)}   # tb.run's input cycles
+    changes = {}
+    for k in range(n):
+        for s in (s_peak(k), s_valley(k)):
+            for off in (-2, -1, 0):
+                if rng.random() < 0.6:
+                    changes[s + off] = rng.randint(0, 7)
+        for _ in range(2):
+            changes[rng.randint(t(k), t(k + 1) - 1)] = rng.randint(0, 7)
+    first = s_peak(0) - 1                                            # isign fixed up to the first sample
+    cyc = sorted(c for c in changes if c > first and c not in busy)
+    val0 = 5
+
+    def val_at(c: int) -> int:                                       # isign_i during cycle c
+        v = val0
+        for x in cyc:
+            if x > c:
+                break
+            v = changes[x]
+        return v
+
+    sched = [base(k, val_at(s_valley(k) - 1)) for k in range(n)]        # sampled before valley k + 1
+    peaks = [base(k, val_at(s_peak(k) - 1)) for k in range(n)]          # sampled before peak k
+    peaks[0] = base(0, val0)                                         # (the idle inputs: up to peak 0)
+    cur = {"v": val0}
+    tb.port_inputs = lambda u: replace(u, isign=cur["v"])            # isign_i: the schedule's, not the sample's
+
+    async def drive():
+        while tb.t0 == float("inf"):                                 # tb.run sets t0 as en_i rises
+            await RisingEdge(dut.clk)
+        for c in cyc:                                                # the falling edge in cycle c
+            await Timer(tb.t0 + c * CLK_NS + CLK_NS // 2 - get_sim_time("ns"), "ns")
+            cur["v"] = changes[c]
+            dut.isign_i.value = cur["v"]
+
+    await tb.reset(peaks[0])
+    tb.t0 = float("inf")
+    task = cocotb.start_soon(drive())
+    rtl, exp = await tb.run(peaks[0], sched, n, peak_inputs=peaks)
+    task.cancel()
+    tb.compare(rtl, exp)
+    tb.check_edges(rtl, exp, table_i=False)                          # (double update: no single pattern)
+    if not tb.compact:
+        comp = [x for x in exp.updates if x.cmp != fixed.modulate(
+            fixed.MODE_FREQ, x.theta >> fixed.PHASE_WIDTH,
+            (x.theta & ((1 << fixed.PHASE_WIDTH) - 1)) >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS), x.period,
+            m=x.m)[1]]
+        assert len(comp) > n // 2, "the compensation changed too few updates"
+    tb.dut._log.info("%d isign changes, %d updates, %d edges", len(cyc), len(exp.updates), len(rtl.gate_edges))
 
 
 # ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two

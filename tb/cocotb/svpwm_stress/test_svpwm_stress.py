@@ -2,7 +2,7 @@
 """Random stress of svpwm_core: random input ("register") writes at random moments of the period,
 random fault pulses (including sub-clock glitches), trip-mode / safe-state / polarity / lock changes,
 every input mode (invalid codes included), references beyond the hexagon, DPWM, update modes,
-prescaler, sync start and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
+prescaler, sync start, dead-time compensation with random current signs and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
 never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, mp) unless
 a forced state made it, gates off in reset and while disabled, the trip forcing, the lock.
 
@@ -50,8 +50,8 @@ class Stress:
         """One random 'register write' on the core's inputs."""
         d, rng = self.dut, self.rng
         what = rng.choices(["freq", "m", "period", "dt", "mp", "en", "cbc", "safe", "pol", "lock", "clear",
-                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync"],
-                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2])[0]
+                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync", "dtc"],
+                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2, 8])[0]
         if what == "freq":
             d.freq_i.value = rng.choice([rng.randint(-(1 << 23), (1 << 23) - 1), rng.randint(-200000, 200000), 0])
         elif what == "m":
@@ -91,6 +91,10 @@ class Stress:
             d.presc_i.value = rng.choice([0, 0, 1, 3, rng.randint(0, 255)])
         elif what == "adc":
             d.adc_trig_i.value = rng.randint(0, 3)
+        elif what == "dtc":                                         # dead-time compensation, current signs
+            d.isign_i.value = rng.randint(0, 7)
+            if rng.random() < 0.3:
+                d.dtc_en_i.value = 1 if rng.random() < 0.7 else 0
         else:                                                       # sync: a waiting core starts on sync_i
             d.sync_en_i.value = 1 if rng.random() < 0.3 else 0
             d.sync_i.value = rng.randint(0, 1)
@@ -139,7 +143,8 @@ async def random_stress(dut):
                    ("fault_i", 0), ("fault_clear_i", 0), ("trip_cbc_i", 0), ("safe_lo_i", 0), ("pol_i", 0),
                    ("lock_i", 0), ("mode_i", 0), ("theta_i", 0), ("v1_i", 0), ("v2_i", 0), ("vf_boost_i", 0),
                    ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),
-                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("rst_ni", 0)):
+                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("dtc_en_i", 0), ("isign_i", 0),
+                   ("rst_ni", 0)):
         getattr(d, sig).value = v
     await clock_cycles(d.clk, 3)
     await FallingEdge(d.clk)

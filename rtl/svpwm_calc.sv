@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_calc: the core's one calculator -- a reference in any input mode -> sector, dwell times, hexagon
-// clamp, compare values (AVR495 Table 4-3), zero-vector placement, dead-time compensation and the
-// minimum-pulse rule; exactly model/svpwm_model/fixed.py: snap_min_pulse(modulate(...)) per phase.
+// clamp (or the six-step overmodulation law), compare values (AVR495 Table 4-3), zero-vector placement,
+// dead-time compensation and the minimum-pulse rule; exactly model/svpwm_model/fixed.py:
+// snap_min_pulse(modulate(...)) per phase.
 // A microcoded accumulator machine (model/svpwm_model/calc_prog.py generates its program and models it clock
 // by clock; docs/design.md): one adder ACC <- A + B + cin, a 32-word operand RAM (svpwm_calc_ram), the sine
 // ROM, one 16 x 16 multiplier and a microcode ROM (svpwm_ucode) addressed by a step counter. Per clock:
@@ -56,6 +57,7 @@ module svpwm_calc #(
   input  logic [15:0]           vf_slope_i,   // V/f: m LSBs per fabs_i LSB, UQ8.8
   input  logic [15:0]           vf_mmax_i,    // V/f: largest m, UQ1.15
   input  logic [1:0]            dpwm_i,       // 0 SVPWM, 1 DPWMMIN, 2 DPWMMAX, 3 DPWM1 (60 deg)
+  input  logic                  om_i,         // 1: six-step overmodulation law (FREQ, VF, POLAR)
   input  logic [CntWidth-1:0]   period_i,     // half carrier period P the compare values are scaled to
   input  logic [DtWidth:0]      thr_i,        // dead time + minimum pulse (minimum-pulse rule)
   input  logic [2:0]            isign_i,      // current signs {c, b, a}, 1 = negative (compensation)
@@ -89,7 +91,7 @@ module svpwm_calc #(
 
     logic unused_full;
     assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp,
-                           isign_i, hdr_i, hdf_i};
+                           isign_i, hdr_i, hdf_i, om_i};
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
@@ -207,7 +209,7 @@ module svpwm_calc #(
     end
 
     // is_cls[j][ph]: phase ph's Table 4-3 code is of class hi (j = 0: code 0), lo (1: code 1) or mid (2: codes
-    // 2, 3); the current-sign conditions c[CIs*] = the sign of that class's phase (dead-time compensation)
+    // 2, 3); the dead-time compensation inputs (InDhi, InDlo, InDmid) follow the sign of that class's phase
     logic [2:0] is_cls [3];
     for (genvar ph = 0; ph < 3; ph++) begin : gen_is_cls
       assign is_cls[0][ph] = sel[2*ph +: 2] == 2'd0;
@@ -227,9 +229,6 @@ module svpwm_calc #(
       else if (k == svpwm_pkg::CDq)        begin : gen_dq   assign c[k] = is_dq; end
       else if (k == svpwm_pkg::CNv1n)      begin : gen_nv1n assign c[k] = !flags_q[svpwm_pkg::FV1n]; end
       else if (k == svpwm_pkg::CNhalf)     begin : gen_nhf  assign c[k] = !flags_q[svpwm_pkg::FHalf]; end
-      else if (k == svpwm_pkg::CIshi)      begin : gen_ishi assign c[k] = |(isign_i & is_cls[0]); end
-      else if (k == svpwm_pkg::CIslo)      begin : gen_islo assign c[k] = |(isign_i & is_cls[1]); end
-      else if (k == svpwm_pkg::CIsmid)     begin : gen_ismd assign c[k] = |(isign_i & is_cls[2]); end
       else                                 begin : gen_zero assign c[k] = 1'b0; end
     end
 
@@ -366,8 +365,14 @@ module svpwm_calc #(
 
     // ---- AUX: the next step's non-RAM operand -------------------------------------------------------------
     // the input the word selects (the operand of the step after next), registered sign-extended in in_q
-    logic [15:0] in_sel;
+    logic [15:0] in_sel, hdf16, mhdr16;
+    logic [15:0] dtc_in [3];
     logic        in_signed;
+    assign hdf16  = 16'(hdf_i);
+    assign mhdr16 = 16'(0) - 16'(hdr_i);
+    for (genvar j = 0; j < 3; j++) begin : gen_dtc_in
+      assign dtc_in[j] = |(isign_i & is_cls[j]) ? hdf16 : mhdr16;
+    end
     logic [16:0] in_d, in_q;
     always_comb begin
       in_sel    = 16'd0;
@@ -383,8 +388,11 @@ module svpwm_calc #(
         4'(svpwm_pkg::InFabs):   in_sel = Compact ? 16'd0 : fabs_i;
         4'(svpwm_pkg::InPeriod): in_sel = 16'(period_i);
         4'(svpwm_pkg::InThr):    in_sel = 16'(thr_i);
-        4'(svpwm_pkg::InHdr):    in_sel = 16'(hdr_i);
-        4'(svpwm_pkg::InHdf):    in_sel = 16'(hdf_i);
+        // the dead-time compensation of the class's phase: + hdf for a negative current, else - hdr
+        4'(svpwm_pkg::InDhi):    begin in_sel = dtc_in[0]; in_signed = 1'b1; end
+        4'(svpwm_pkg::InDlo):    begin in_sel = dtc_in[1]; in_signed = 1'b1; end
+        4'(svpwm_pkg::InDmid):   begin in_sel = dtc_in[2]; in_signed = 1'b1; end
+        4'(svpwm_pkg::InMv):     in_sel = (om_i && !is_xy) ? 16'(svpwm_pkg::MVertex) : 16'hFFFF;
         default:      in_sel = 16'd0;
       endcase
     end

@@ -8,27 +8,29 @@
 // Parameters:
 //   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
 //                continuous SVPWM, valley updates, no dead-time compensation; mode_i, theta_i, v1_i, v2_i,
-//                vf_*_i, dpwm_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i and isign_i are ignored. The same calculator runs its FREQ-only program
+//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i and isign_i are ignored. The same calculator runs its FREQ-only program
 //                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4,
-//                the default: svpwm_pkg::min_period(Compact), 251 / 230 clocks)
+//                the default: svpwm_pkg::min_period(Compact), 254 / 230 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
 // POLAR (theta_i + m_i), AB (v1_i, v2_i = v_alpha, v_beta), DQ (v1_i, v2_i = v_d, v_q + theta_i); a vector
 // beyond the hexagon is clamped to its boundary keeping its angle (sat_o); dpwm_i places the zero vectors
-// (SVPWM or bus-clamped DPWM). Invalid mode / update codes: zero vector / valley update + cfg_err_o.
+// (SVPWM or bus-clamped DPWM); om_i = 1 replaces the clamp by the six-step law in the angle-driven modes
+// (fixed.hex_clamp: the vector moves towards the vertices as m grows past 2/sqrt(3), six-step at m = 2).
+// Invalid mode / update codes: zero vector / valley update + cfg_err_o.
 // Dead-time compensation (dtc_en_i): each phase's compare value moves by half the dead time against the
 // volt-seconds the dead time costs at that phase's current sign (isign_i): C - ceil(dt / 2) for a positive
 // current, C + ceil(dt / 2) for a negative one, before the minimum-pulse rule (fixed.dtc_shift).
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, mode_i, dtc_en_i, isign_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
-// calculator's program + load 1: 247, compact 226), in the clock before count == SampleLead (down) /
+// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
+// calculator's program + load 1: 250, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and
 // mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an update at
@@ -70,6 +72,7 @@ module svpwm_core #(
   input  logic [15:0]                 vf_slope_i,      // V/f: UQ8.8 m-LSBs per 2^(FreqWidth-17) freq LSBs
   input  logic [15:0]                 vf_mmax_i,       // V/f: largest m, UQ1.15
   input  logic [1:0]                  dpwm_i,          // 0 SVPWM 1 DPWMMIN 2 DPWMMAX 3 DPWM1 (60 deg)
+  input  logic                        om_i,            // overmodulation: 0 angle-keeping clamp, 1 six-step law
   input  logic [1:0]                  upd_i,           // update at 0 valley 1 peak 2 both (3: error)
   input  logic [7:0]                  presc_i,         // new values every presc_i + 1 opportunities
   input  logic [CntWidth-1:0]         period_i,        // half carrier period in clocks
@@ -335,7 +338,7 @@ module svpwm_core #(
   logic [2:0]  mode_q;
   logic [15:0] s0_d, s0_q, s1_d, s1_q, s2_d, s2_q;
   logic [1:0]  dpwm_q;
-  logic        dtc_q;
+  logic        dtc_q, om_q;
   logic [2:0]  isign_q;
   logic        in_vf, in_xy;
 
@@ -354,6 +357,7 @@ module svpwm_core #(
       dpwm_q <= '0;
       dtc_q   <= 1'b0;
       isign_q <= '0;
+      om_q    <= 1'b0;
     end else if (event_now) begin
       mode_q <= mode_i;
       s0_q   <= s0_d;
@@ -362,6 +366,7 @@ module svpwm_core #(
       dpwm_q <= dpwm_i;
       dtc_q   <= !Compact && dtc_en_i;
       isign_q <= isign_i;
+      om_q    <= !Compact && om_i;
     end
   end
 
@@ -446,6 +451,7 @@ module svpwm_core #(
     .vf_slope_i (s1_q),
     .vf_mmax_i  (s2_q),
     .dpwm_i     (dpwm_q),
+    .om_i       (om_q),
     // the compact variant's updates are valley updates only (start_q implies ev_valley_q): it reads the
     // next-period registers directly, which hold from the sample to the next valley's sample (a whole
     // period > the computation); calc_period_q / calc_thr_q are then removed by synthesis (80 LC, HX1K)

@@ -8,10 +8,10 @@
 package svpwm_pkg;
 
   // clocks from svpwm_calc start_i to done_o, per program (calc_prog.calc_latency)
-  localparam int CalcLatencyFullDsp = 251;
+  localparam int CalcLatencyFullDsp = 249;
   localparam int CalcLatencyCompactSerial = 236;
-  localparam int CalcLatencyFullSerial = 468;
-  localparam int CalcLatencyCompactDsp = 138;
+  localparam int CalcLatencyFullSerial = 496;
+  localparam int CalcLatencyCompactDsp = 142;
   // smallest MinPeriod default of the full core (the shortest half period the tests exercise)
   localparam int MinPeriodBase = 48;
   // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,
@@ -130,8 +130,10 @@ package svpwm_pkg;
   localparam int InFabs = 7;
   localparam int InPeriod = 8;
   localparam int InThr = 9;
-  localparam int InHdr = 10;
-  localparam int InHdf = 11;
+  localparam int InDhi = 10;
+  localparam int InDlo = 11;
+  localparam int InDmid = 12;
+  localparam int InMv = 13;
   localparam int RomOff = 0;
   localparam int RomI = 1;
   localparam int RomI1 = 2;
@@ -173,9 +175,6 @@ package svpwm_pkg;
   localparam int CDq = 28;
   localparam int CNv1n = 29;
   localparam int CNhalf = 30;
-  localparam int CIshi = 18;
-  localparam int CIslo = 19;
-  localparam int CIsmid = 20;
   localparam int ModeFreq = 0;
   localparam int ModeVf = 1;
   localparam int ModePolar = 2;
@@ -185,6 +184,8 @@ package svpwm_pkg;
   localparam int DpwmMin = 1;
   localparam int DpwmMax = 2;
   localparam int Dpwm60 = 3;
+  localparam int MVertex = 37837;
+  localparam int OmGOne = 256;
   // product shifts by psh code
   localparam int Psh0 = 8;
   localparam int Psh1 = 14;

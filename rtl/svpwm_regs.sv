@@ -55,6 +55,7 @@ module svpwm_regs #(
   output logic [2:0]   ctrl_mode_o,            // CTRL.mode: RW (not in the compact variant)
   output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW (not in the compact variant)
   output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW (not in the compact variant)
+  output logic         ctrl_om_o,              // CTRL.om: RW (not in the compact variant)
   output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW (not in the compact variant)
   output logic [23:0]  freq_o,                 // FREQ.freq: RW
   output logic [15:0]  m_o,                    // M.m: RW
@@ -301,6 +302,7 @@ module svpwm_regs #(
   logic [2:0]   ctrl_mode_q;
   logic [1:0]   ctrl_upd_q;
   logic [1:0]   ctrl_dpwm_q;
+  logic         ctrl_om_q;
   logic [1:0]   ctrl_adc_trig_q;
   logic [15:0]  theta_q;
   logic [15:0]  v1_q;
@@ -317,6 +319,7 @@ module svpwm_regs #(
     logic [2:0]   ctrl_mode_d, ctrl_mode_wr;
     logic [1:0]   ctrl_upd_d, ctrl_upd_wr;
     logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_wr;
+    logic         ctrl_om_d, ctrl_om_wr;
     logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_wr;
     logic [15:0]  theta_d, theta_wr;
     logic [15:0]  v1_d, v1_wr;
@@ -332,6 +335,7 @@ module svpwm_regs #(
     assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
     assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
     assign ctrl_dpwm_wr = be_i[2] ? wdata_i[17:16] : ctrl_dpwm_q[1:0];
+    assign ctrl_om_wr = be_i[2] ? wdata_i[18] : ctrl_om_q;
     assign ctrl_adc_trig_wr = be_i[2] ? wdata_i[21:20] : ctrl_adc_trig_q[1:0];
     assign theta_wr = {(be_i[1] ? wdata_i[15:8] : theta_q[15:8]), (be_i[0] ? wdata_i[7:0] : theta_q[7:0])};
     assign v1_wr = {(be_i[1] ? wdata_i[15:8] : v1_q[15:8]), (be_i[0] ? wdata_i[7:0] : v1_q[7:0])};
@@ -349,6 +353,7 @@ module svpwm_regs #(
       ctrl_mode_d = ctrl_mode_q;
       ctrl_upd_d = ctrl_upd_q;
       ctrl_dpwm_d = ctrl_dpwm_q;
+      ctrl_om_d = ctrl_om_q;
       ctrl_adc_trig_d = ctrl_adc_trig_q;
       theta_d = theta_q;
       v1_d = v1_q;
@@ -365,6 +370,7 @@ module svpwm_regs #(
         ctrl_mode_d = ctrl_mode_wr;
         ctrl_upd_d = ctrl_upd_wr;
         ctrl_dpwm_d = ctrl_dpwm_wr;
+        ctrl_om_d = ctrl_om_wr;
         ctrl_adc_trig_d = ctrl_adc_trig_wr;
       end
       if (wr && sel[SelTheta]) begin
@@ -403,6 +409,7 @@ module svpwm_regs #(
         ctrl_mode_q <= 3'h0;
         ctrl_upd_q <= 2'h0;
         ctrl_dpwm_q <= 2'h0;
+        ctrl_om_q <= 1'h0;
         ctrl_adc_trig_q <= 2'h0;
         theta_q <= 16'h0;
         v1_q <= 16'h0;
@@ -419,6 +426,7 @@ module svpwm_regs #(
         ctrl_mode_q <= ctrl_mode_d;
         ctrl_upd_q <= ctrl_upd_d;
         ctrl_dpwm_q <= ctrl_dpwm_d;
+        ctrl_om_q <= ctrl_om_d;
         ctrl_adc_trig_q <= ctrl_adc_trig_d;
         theta_q <= theta_d;
         v1_q <= v1_d;
@@ -437,6 +445,7 @@ module svpwm_regs #(
     assign ctrl_mode_q = 3'h0;
     assign ctrl_upd_q = 2'h0;
     assign ctrl_dpwm_q = 2'h0;
+    assign ctrl_om_q = 1'h0;
     assign ctrl_adc_trig_q = 2'h0;
     assign theta_q = 16'h0;
     assign v1_q = 16'h0;
@@ -461,7 +470,7 @@ module svpwm_regs #(
   logic [31:0] rd_config;
   assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
-  assign rd_ctrl = {10'h0, ctrl_adc_trig_q, 2'h0, ctrl_dpwm_q, 2'h0, ctrl_upd_q, 1'h0, ctrl_mode_q, 1'h0, ctrl_lock_q, ctrl_pol_q, ctrl_safe_lo_q, ctrl_trip_cbc_q, ctrl_sync_en_q, ctrl_en_q};
+  assign rd_ctrl = {10'h0, ctrl_adc_trig_q, 1'h0, ctrl_om_q, ctrl_dpwm_q, 2'h0, ctrl_upd_q, 1'h0, ctrl_mode_q, 1'h0, ctrl_lock_q, ctrl_pol_q, ctrl_safe_lo_q, ctrl_trip_cbc_q, ctrl_sync_en_q, ctrl_en_q};
   logic [31:0] rd_freq;
   assign rd_freq = {8'h0, freq_q};
   logic [31:0] rd_m;
@@ -568,6 +577,7 @@ module svpwm_regs #(
   assign ctrl_mode_o = ctrl_mode_q;
   assign ctrl_upd_o = ctrl_upd_q;
   assign ctrl_dpwm_o = ctrl_dpwm_q;
+  assign ctrl_om_o = ctrl_om_q;
   assign ctrl_adc_trig_o = ctrl_adc_trig_q;
   assign freq_o = freq_q;
   assign m_o = m_q;

@@ -110,7 +110,7 @@ def _camel(name: str) -> str:
 
 def _consts() -> list[tuple[str, int]]:
     out = []
-    for mod, groups in ((calc_prog, CODE_GROUPS), (calc_prog.fixed, ("MODE_", "DPWM_"))):
+    for mod, groups in ((calc_prog, CODE_GROUPS), (calc_prog.fixed, ("MODE_", "DPWM_", "M_VERTEX", "OM_"))):
         for pre in groups:
             for n, v in vars(mod).items():
                 if n.startswith(pre) and isinstance(v, int) and not isinstance(v, bool) and n.upper() == n:

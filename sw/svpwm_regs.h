@@ -86,6 +86,10 @@ extern "C" {
 #define SVPWM__CTRL__DPWM_bp 16
 #define SVPWM__CTRL__DPWM_bw 2
 #define SVPWM__CTRL__DPWM_reset 0x0
+#define SVPWM__CTRL__OM_bm 0x40000
+#define SVPWM__CTRL__OM_bp 18
+#define SVPWM__CTRL__OM_bw 1
+#define SVPWM__CTRL__OM_reset 0x0
 #define SVPWM__CTRL__ADC_TRIG_bm 0x300000
 #define SVPWM__CTRL__ADC_TRIG_bp 20
 #define SVPWM__CTRL__ADC_TRIG_bw 2

@@ -95,8 +95,12 @@ RC_NONE, RC_C, RC_SW, RC_SW1, RC_SNAP, RC_DPWM, RC_MERGE = range(7)
 # asrc
 AS_NONE, AS_ROM, AS_PROD, AS_IN, AS_SHR9, AS_SHR1, AS_Q, AS_ANG = range(8)
 # isel: the calculator's held inputs
-IN_M, IN_THETA, IN_V1, IN_V2, IN_BOOST, IN_SLOPE, IN_MMAX, IN_FABS, IN_PERIOD, IN_THR, IN_HDR, IN_HDF = range(12)
-IN_SIGNED = (IN_V1, IN_V2)
+IN_M, IN_THETA, IN_V1, IN_V2, IN_BOOST, IN_SLOPE, IN_MMAX, IN_FABS, IN_PERIOD, IN_THR, IN_DHI, IN_DLO, IN_DMID, \
+    IN_MV = range(14)
+# IN_DHI / IN_DLO / IN_DMID: the dead-time compensation of the phase of class OUT_HI / OUT_LO / OUT_MID (its current
+# sign: + hdf if negative, else - hdr; signed); IN_MV: the overmodulation threshold, fixed.M_VERTEX with om_i in
+# the angle-driven modes, else 0xFFFF
+IN_SIGNED = (IN_V1, IN_V2, IN_DHI, IN_DLO, IN_DMID)
 # psh: product shift (rounding: cin mode CIN_RND adds bit k - 1)
 PSH = (8, 14, 15, 0)
 PSH8, PSH14, PSH15, PSH0 = range(4)
@@ -109,9 +113,6 @@ CIN_0, CIN_1, CIN_BINV, CIN_RND = range(4)
  F_S1, F_S2, F_S3, F_S4) = range(18)
 N_FLAGS = 18
 C_VF, C_XY, C_ERR, C_MIDSGN, C_DQ, C_NV1N, C_NHALF = range(24, 31)
-# the current sign (isign, 1 = negative) of the phase whose Table 4-3 code is of class OUT_HI / OUT_LO / OUT_MID
-C_ISHI, C_ISLO, C_ISMID = range(18, 21)
-C_IS = {OUT_HI: C_ISHI, OUT_LO: C_ISLO, OUT_MID: C_ISMID}    # the current-sign condition of each class
 
 # RAM map (32 words; the ZERO words read 0 and are never written; pairs / blocks are read with condition bits
 # ORed into the address)
@@ -120,12 +121,12 @@ R_K64 = 1            # 2^16
 R_K32 = 2            # 2^15
 R_SQ3 = 3            # sqrt(3)/2, UQ0.16
 R_K256 = 5           # 256
-R_P2H = 6            # 2P - hthr
+R_P2H = 6            # 2P - hthr; before: the overmodulation gain g (R_G), then the base (P + 1) 2^8
+R_G = 6
 R_S = 7              # T1 + T2
 R_T1 = 8             # {T1 polar, T1 xyz, 0, 0}; after the merge {P - hi, -lo, 0, 0} (R_DP)
 R_DP = 8
-R_T2 = 12            # {T2 polar, T2 xyz, 0, 0}; after the clamp {-hdr, hdf} (R_DTC)
-R_DTC = 12
+R_T2 = 12            # {T2 polar, T2 xyz, 0, 0}
 R_ABS = 16           # {|X|, |Z|, |Y|, -}
 R_X, R_Y, R_Z = 19, 20, 21
 R_GH = 22            # {0xFFFF, g + h}
@@ -332,6 +333,8 @@ class Builder:
             need = max(need, self.q_t + 3)
         if asrc == AS_ANG:
             need = max(need, self.ang_t + 2)
+        if asrc == AS_IN and b.get("isel") in (IN_DHI, IN_DLO, IN_DMID):
+            need = max(need, self.sec_t + 4)              # (selected by the Table 4-3 codes: sel)
         if b.get("ra") is not None and "ra" in b:
             rc = b.get("rc", RC_NONE)
             for a in range(b["ra"], b["ra"] + _RC_SPAN[rc]):
@@ -341,8 +344,8 @@ class Builder:
             for f in fl:                                  # flags: set one clock after their step
                 if f in self.ft:
                     need = max(need, self.ft[f] + (5 if rc in (RC_SW, RC_SW1) else 4))   # (sw_q: one more)
-            if rc == RC_C and b.get("ci") in (C_MIDSGN, C_ISHI, C_ISLO, C_ISMID):
-                need = max(need, self.sec_t + 4)          # (from the Table 4-3 codes: sel)
+            if rc == RC_C and b.get("ci") == C_MIDSGN:
+                need = max(need, self.sec_t + 4)
         if b.get("binv") == BINV_C:
             for f in self._flags_of(b["bci"]):
                 if f in self.ft:
@@ -512,11 +515,14 @@ class Machine:
         dpwm = 0 if self.prog.compact else inp.get("dpwm", 0)
         ins = [inp.get("m", 0), inp.get("theta", 0), inp.get("v1", 0), inp.get("v2", 0),
                inp.get("vf_boost", 0), inp.get("vf_slope", 0), inp.get("vf_mmax", 0), inp.get("fabs", 0),
-               inp["period"], inp["thr"], inp.get("hdr", 0), inp.get("hdf", 0)]
+               inp["period"], inp["thr"], 0, 0, 0,
+               fixed.M_VERTEX if inp.get("om", 0) and not (is_ab or is_dq) else 0xFFFF]
+        hdr, hdf = inp.get("hdr", 0), inp.get("hdf", 0)
         isign = 0 if self.prog.compact else inp.get("isign", 0) & 7
         if self.prog.compact:
-            ins = [ins[0]] + [0] * 7 + ins[8:10] + [0, 0]
-        ins += [0] * 4
+            ins = [ins[0]] + [0] * 7 + ins[8:10] + [0, 0, 0, 0xFFFF]
+            hdr = hdf = 0
+        ins += [0] * 2
         ram = [0] * RAM_WORDS
         for a, v in RAM_INIT.items():
             ram[a] = v
@@ -564,8 +570,9 @@ class Machine:
             c[C_VF], c[C_XY], c[C_ERR], c[C_DQ] = int(is_vf), int(is_ab or is_dq), int(is_err), int(is_dq)
             c[C_MIDSGN] = int(midneg) ^ flags[F_FIRST]
             c[C_NV1N], c[C_NHALF] = 1 - flags[F_V1N], 1 - flags[F_HALF]
-            for cls, ci in C_IS.items():
-                c[ci] = int(any((isign >> ph) & 1 and sel_class(sel[ph]) == cls for ph in range(3)))
+            for isel_d, cls in ((IN_DHI, OUT_HI), (IN_DLO, OUT_LO), (IN_DMID, OUT_MID)):
+                neg = any((isign >> ph) & 1 and sel_class(sel[ph]) == cls for ph in range(3))
+                ins[isel_d] = (hdf if neg else -hdr) & 0xFFFF
             if k == 0:
                 # idle word: only its next fields matter
                 a_val, b_val, s = 0, 0, 0
@@ -723,12 +730,19 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.cmp(inp(IN_MMAX, inv=True), F_VF)                   # cand - m_max < 0: cand, else m_max
         g.load(ram(S_VF0, rc=RC_C, ci=F_VF))
         g.write(S_M + 1)
+        # ---- overmodulation gain (fixed.om_gain): g = 2^8 + 2 max(0, m - MV) (MV = 0xFFFF: g = 2^8) -> R_G ----
+        g.load(ram(S_M, rc=RC_C, ci=C_VF))
+        g.add(inp(IN_MV, inv=True), fset=1, fidx=F_S1)       # m - MV (F_S1: free until the minimum pulse)
+        g.add2(ram(R_K256))                                  # 2 (m - MV) + 2^8
+        g.write(R_A)                                         # {candidate, 2^8} (R_K256 = R_A + 1)
+        g.load(ram(R_A, rc=RC_C, ci=F_S1))
+        g.write(R_G)
     else:
         g.load(inp(IN_M))
         g.write(S_M)
         g.wait(3)
     # ---- FREQ / VF / POLAR (and DQ's trig): sb, sa of theta' -> S_SB, S_SA ------------------------------
-    sines(S_SB, S_SA, R_A)
+    sines(S_SB, S_SA, S_VF1)
     # ---- T1 = round(m sa / 2^15), T2 = round(m sb / 2^15) (fixed.duties) -> polar slots of R_T1, R_T2 -----
     m_sel = ram(S_M) if compact else ram(S_M, rc=RC_C, ci=C_VF)
     r1 = g.mul(m_sel, ram(S_SA))
@@ -837,45 +851,87 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     for _ in range(15):
         g.hold()
         g.add2(ram(R_S, binv=BINV_NSIGN, cin=CIN_BINV), qsh=1)
-    g.load(aux(AS_Q))                                     # q
-    g.write(R_MIN)
-    g.load(ram(R_K64))
-    g.add(aux(AS_Q, inv=True))                            # 2^16 - q
-    g.write(R_MAX)
+    if compact or not dsp:
+        g.load(aux(AS_Q))                                 # q
+        g.write(R_MIN)
+        g.load(ram(R_K64))
+        g.add(aux(AS_Q, inv=True))                        # 2^16 - q
+        g.write(R_MAX)
+        if not compact:                                   # six-step law (below: the same on the DSP)
+            g.load(ram(R_K32))
+            g.add(aux(AS_Q, inv=True))                    # d = 2^15 - q
+            rg = g.mul("acc", ram(R_G))
+            g.wait(rg - 1)
+            g.load(ram(R_K32))
+            g.add(prod(PSH8, sign="neg"), fset=1, fidx=F_S1)   # 2^15 - round(g d / 2^8)
+            g.write(R_SNAP)                               # {q', 0} (R_SNAP + 1 is a zero word)
+            g.load(ram(R_SNAP, rc=RC_C, ci=F_S1))         # q' (0 if negative)
+            g.write(R_MIN)
+            g.load(ram(R_K64))
+            g.add(ram(R_MIN, inv=True))                   # 2^16 - q'
+            g.write(R_MAX)
     # ---- compare values (fixed.dwell_compare): A = (T1 P) >> 8, B = (T2 P) >> 8, C = ((P+1) 2^8 +- ..) >> 9 --
     # lo = min or q, hi = max or 2^16 - q (capped at 0xFFFF by sat16); S = lo8 + hi8, Dm = hi8 - lo8
-    rl = g.mul(ram(R_MIN, rc=RC_C, ci=F_SATN), inp(IN_PERIOD))
-    if dsp:
-        t = g.e(ram(R_MAX, rc=RC_C, ci=F_SATN), mla=1, mas=0, aen=1, acc=ACC_HOLD)
-        rh = t + g.mul_lat + 1
-        g.wait(rl)
+    if dsp and not compact:
+        # six-step law (fixed.hex_clamp): q' = max(0, 2^15 - round(g (2^15 - q) / 2^8)) (g = 2^8: q' = q); the
+        # products 2^8 P (the base), lo P and hi P follow on the multiplier with MB = P
+        g.load(ram(R_K32))
+        g.add(aux(AS_Q, inv=True))                        # d = 2^15 - q
+        rg = g.mul("acc", ram(R_G))
+        g.load(ram(R_K32))
+        g.wait(rg)
+        g.add(prod(PSH8, sign="neg"), fset=1, fidx=F_S1)  # 2^15 - round(g d / 2^8)
+        g.write(R_SNAP)                                   # {q', 0} (R_SNAP + 1 is a zero word)
+        rb = g.mul(ram(R_K256), inp(IN_PERIOD))           # 2^8 P (in the flag's wait)
+        g.load(ram(R_SNAP, rc=RC_C, ci=F_S1))             # q' (0 if negative)
+        g.write(R_MIN)
+        g.wait(rb)
+        g.load(prod(PSH0, rnd=False))                     # 2^8 P
+        g.add(ram(R_K256))                                # base = (P + 1) 2^8
+        g.write(R_P2H)                                    # (R_G: g is used; R_P2H free until the minimum pulse)
+        g.load(ram(R_K64))
+        g.add(ram(R_MIN, inv=True))                       # 2^16 - q'
+        g.write(R_MAX)
+        tl = g.e(ram(R_MIN, rc=RC_C, ci=F_SATN), mla=1, mas=0, aen=1, acc=ACC_HOLD)
+        th = g.e(ram(R_MAX, rc=RC_C, ci=F_SATN), mla=1, mas=0, aen=1, acc=ACC_HOLD)
+        g.wait(tl + g.mul_lat + 1)
         g.load(prod(PSH8, rnd=False))                     # lo8
         g.write(R_Y)
+        g.wait(th + g.mul_lat + 1)                        # (the lo product stays selectable until then)
         g.load(prod(PSH8, rnd=False))                     # hi8
+        g.write(R_Z)
+        g.add(ram(R_Y))                                   # S
+        g.write(R_A)
+        g.load(ram(R_Z))
+        g.add(ram(R_Y, inv=True))                         # Dm
+        g.write(R_Z)
+        r_base = R_P2H
     else:
+        rl = g.mul(ram(R_MIN, rc=RC_C, ci=F_SATN), inp(IN_PERIOD))
         g.wait(rl)
         g.load(prod(PSH8, rnd=False))
         g.write(R_Y)
         rh = g.mul(ram(R_MAX, rc=RC_C, ci=F_SATN), inp(IN_PERIOD))
         g.wait(rh)
         g.load(prod(PSH8, rnd=False))
-    g.write(R_Z)
-    g.add(ram(R_Y))                                     # S
-    g.write(R_A)
-    g.load(ram(R_Z))
-    g.add(ram(R_Y, inv=True))                           # Dm
-    g.write(R_Z)
-    # (P + 1) 2^8
-    g.load(inp(IN_PERIOD))
-    for _ in range(8):
-        g.add2(ram(R_ZERO))
-    g.add(ram(R_K256))
-    g.write(R_Y)                                        # base
+        g.write(R_Z)
+        g.add(ram(R_Y))                                   # S
+        g.write(R_A)
+        g.load(ram(R_Z))
+        g.add(ram(R_Y, inv=True))                         # Dm
+        g.write(R_Z)
+        # (P + 1) 2^8
+        g.load(inp(IN_PERIOD))
+        for _ in range(8):
+            g.add2(ram(R_ZERO))
+        g.add(ram(R_K256))
+        g.write(R_Y)                                      # base
+        r_base = R_Y
     # hi = (base + S) >> 9, lo = (base - S) >> 9, mid = (base +- Dm) >> 9
     res = []
     for k, bb in ((OUT_HI, ram(R_A)), (OUT_LO, ram(R_A, inv=True)),
                   (OUT_MID, ram(R_Z, binv=BINV_C, bci=C_MIDSGN, cin=CIN_BINV))):
-        g.load(ram(R_Y))
+        g.load(ram(r_base))
         g.add(bb)
         g.load(aux(AS_SHR9))
         addr = {OUT_HI: R_ABS, OUT_LO: R_ABS + 1, OUT_MID: R_ABS + 2}[k]
@@ -885,10 +941,6 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     # (fixed.dtc_shift): + hdf for a negative current, - hdr otherwise (the phase of each class by its sign) ---
     if not compact:
         g.cmp(inp(IN_PERIOD, inv=True, cin=CIN_0), F_DP60, shift=True)   # 2 mid - P - 1 < 0: 2 mid <= P
-        g.load(inp(IN_HDR, inv=True))
-        g.write(R_DTC)                                    # - hdr
-        g.load(inp(IN_HDF))
-        g.write(R_DTC + 1)                                # hdf
         g.load(inp(IN_PERIOD))
         g.add(ram(R_ABS, inv=True))                       # P - hi
         g.write(R_DP)
@@ -896,11 +948,6 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.write(R_DP + 1)
         g.load(ram(R_DP, rc=RC_DPWM))                     # sh
         g.write(R_A)
-        for k, addr in res:
-            g.load(ram(addr))
-            g.add(ram(R_A))
-            g.add(ram(R_DTC, rc=RC_C, ci=C_IS[k]))
-            g.write(addr)
     # ---- minimum pulse (fixed.snap_min_pulse), thr = dt + mp: 0 / thr below thr, P / P - hthr near P ------
     g.load(inp(IN_THR))
     g.write(R_SNAP + 2)                                   # thr
@@ -913,15 +960,29 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     g.write(R_SNAP + 4)
     g.add(inp(IN_PERIOD))                                 # 2P - hthr
     g.write(R_P2H)
-    for k, addr in res:
+    def shift(k, addr):                                   # C + sh + the compensation of class k -> ACC
         g.load(ram(addr))
+        g.add(ram(R_A))
+        g.add(inp({OUT_HI: IN_DHI, OUT_LO: IN_DLO, OUT_MID: IN_DMID}[k]))
+
+    if not compact:
+        shift(*res[0])
+    for i, (k, addr) in enumerate(res):
+        if compact:
+            g.load(ram(addr))
         g.write(R_SNAP)                                   # c
         g.cmp(inp(IN_THR, inv=True), F_S1)                # c - thr < 0
         g.cmp(inp(IN_THR, inv=True), F_S2, shift=True)    # 2c - thr < 0
         g.cmp(ram(R_SNAP + 4, inv=True, cin=CIN_0), F_S3)  # c - (P - hthr) - 1 < 0: not c > P - hthr
         g.cmp(ram(R_P2H, inv=True, cin=CIN_0), F_S4, shift=True)
+        nxt = not compact and i + 1 < len(res)
+        if nxt:                                           # the next class's shift while the flags settle
+            shift(*res[i + 1])
+            g.write(res[i + 1][1])
         g.load(ram(R_SNAP, rc=RC_SNAP))
         g.put(g.t, out=k)
+        if nxt:
+            g.load(ram(res[i + 1][1]))
     g.hold(done=1)
     return g.p
 
@@ -952,5 +1013,6 @@ def expect(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int],
             inp.get("mode", 0), inp.get("sector", 0), inp.get("a16", 0), P, freq=inp.get("freq", 0),
             m=inp.get("m", 0), theta=inp.get("theta", 0), v1=inp.get("v1", 0), v2=inp.get("v2", 0),
             vf_boost=inp.get("vf_boost", 0), vf_slope=inp.get("vf_slope", 0), vf_mmax=inp.get("vf_mmax", 0),
-            dpwm=inp.get("dpwm", 0), isign=inp.get("isign", 0) & 7, hdr=inp.get("hdr", 0), hdf=inp.get("hdf", 0))
+            dpwm=inp.get("dpwm", 0), isign=inp.get("isign", 0) & 7, hdr=inp.get("hdr", 0), hdf=inp.get("hdf", 0),
+            om=inp.get("om", 0))
     return sector, tuple(fixed.snap_min_pulse(x, P, thr) for x in c), sat, err

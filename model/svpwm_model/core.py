@@ -52,6 +52,7 @@ class Inputs:
     presc: int = 0
     isign: int = 0          # current signs {c, b, a}, 1 = negative (dead-time compensation)
     dtc: int = 0            # 1: dead-time compensation on (not in the compact core)
+    om: int = 0             # overmodulation law: 0 angle-keeping clamp, 1 six-step (not in the compact core)
 
 
 @dataclass(frozen=True)
@@ -106,7 +107,7 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
 
 def _compact(u: Inputs) -> Inputs:
     """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler."""
-    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0)
+    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0, om=0)
 
 
 def _upd_code(upd: int) -> int:
@@ -179,7 +180,7 @@ class CoreModel:
             sec, cmp, sat, err = fixed.modulate(u.mode, sector, a16, period, freq=f_cur, m=u.m, theta=u.theta,
                                                 v1=u.v1, v2=u.v2, vf_boost=u.vf_boost, vf_slope=u.vf_slope,
                                                 vf_mmax=u.vf_mmax, dpwm=u.dpwm, isign=u.isign & 7, hdr=hdr,
-                                                hdf=hdf)
+                                                hdf=hdf, om=u.om)
             cmp = tuple(fixed.snap_min_pulse(c, period, thr) for c in cmp)
             if u.mode in (fixed.MODE_FREQ, fixed.MODE_POLAR):
                 m_used = u.m

@@ -143,16 +143,37 @@ def duties(a16: int, m: int) -> tuple[int, int]:
     return (m * sa + rnd) >> M_FRAC, (m * sb + rnd) >> M_FRAC
 
 
-def hex_clamp(t1: int, t2: int) -> tuple[int, int, bool]:
+M_VERTEX = 0x93CD         # round(2 / sqrt(3) * M_ONE): m of the hexagon's vertices
+OM_G_ONE = 256            # overmodulation gain g, UQ8.8: 1.0 = the angle-keeping clamp
+
+
+def om_gain(m: int, om: bool, mode: int = MODE_FREQ) -> int:
+    """Gain g (UQ8.8) of the six-step overmodulation law (om = 1, the angle-driven modes FREQ, VF, POLAR):
+    g = 1 + (m - M_VERTEX) / 128 above the vertex magnitude, 1 below it, 1 with om = 0 or in the AB / DQ modes.
+    g = 256 + 2 max(0, m - M_VERTEX) <= 55652 for m <= 0xFFFF."""
+    if not om or mode not in (MODE_FREQ, MODE_VF, MODE_POLAR):
+        return OM_G_ONE
+    return OM_G_ONE + 2 * max(0, m - M_VERTEX)
+
+
+def hex_clamp(t1: int, t2: int, g: int = OM_G_ONE) -> tuple[int, int, bool]:
     """Overmodulation: a vector outside the hexagon (T1 + T2 > 1) is clamped to its boundary keeping its angle.
 
     The angle inside the sector is set by the ratio T1 : T2, so the smaller of the two is rescaled,
     q = floor(min * 2^16 / (T1 + T2)), and the larger becomes 1 - q: T0 = 1 - T1 - T2 is never negative
-    (Minas eq. (5), T0 = Ts - T1 - T2). Returns (T1, T2, saturated); both are capped at T_CAP (16 bits)."""
+    (Minas eq. (5), T0 = Ts - T1 - T2). Returns (T1, T2, saturated); both are capped at T_CAP (16 bits).
+
+    Six-step law (g > 1, om_gain): on the hexagon side, d = 1/2 - q is the distance from the side's middle;
+    it is stretched, d' = min(1/2, g d) (q' = 2^15 - round(g d / 2^8), at least 0): the vector moves towards
+    the nearer vertex and stays there (q' = 0) while g d >= 1/2, the hold angle growing with g until the
+    whole sector sits at its vertices (six-step, g -> infinity; 1.10266 U_dc of 1.10266 at m = 0xFFFF).
+    Continuous in the angle (d = 0 stays 0), monotonic in g; g = 1 is the angle-keeping clamp exactly."""
     s = t1 + t2
     sat = s > D_ONE
     if sat:
         q = (min(t1, t2) << SIN_BITS) // s
+        if g != OM_G_ONE:
+            q = max(0, (1 << (SIN_BITS - 1)) - ((g * ((1 << (SIN_BITS - 1)) - q) + 128) >> 8))
         t1, t2 = (q, D_ONE - q) if t1 <= t2 else (D_ONE - q, q)
     return min(t1, T_CAP), min(t2, T_CAP), sat
 
@@ -327,17 +348,20 @@ def dq_dwell(theta: int, v_d: int, v_q: int) -> tuple[int, int, int]:
 def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int = 0, m: int = 0,
              theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0, vf_slope: int = 0,
              vf_mmax: int = 0, dpwm: int = DPWM_OFF, isign: int = 0, hdr: int = 0,
-             hdf: int = 0) -> tuple[int, tuple[int, int, int], bool, bool]:
+             hdf: int = 0, om: int = 0) -> tuple[int, tuple[int, int, int], bool, bool]:
     """The whole compute path for one update: reference (any mode) -> sector, dwell times -> hexagon clamp
     -> compare values (Table 4-3) -> zero-vector placement -> dead-time compensation (dtc_shift; hdr = hdf =
-    0: none). Returns (sector, (C_a, C_b, C_c), sat, cfg_err).
+    0: none). om = 1: the six-step overmodulation law in the clamp (om_gain, hex_clamp). Returns (sector,
+    (C_a, C_b, C_c), sat, cfg_err).
 
     acc_sector / acc_a16: the phase accumulator (freq and vf modes). An unknown mode gives the zero vector
     (T1 = T2 = 0, all phases 50 %) and cfg_err. The minimum-pulse rule (snap_min_pulse) comes after this."""
     err = False
+    g = OM_G_ONE
     if mode in (MODE_FREQ, MODE_VF, MODE_POLAR):
         if mode == MODE_VF:
             m = vf_m(freq, vf_boost, vf_slope, vf_mmax)
+        g = om_gain(m, bool(om), mode)
         sector, a16 = (acc_sector, acc_a16) if mode != MODE_POLAR else theta_split(theta)
         t1, t2 = duties(a16, m)
     elif mode == MODE_AB:
@@ -346,7 +370,7 @@ def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int
         sector, t1, t2 = dq_dwell(theta, v1, v2)
     else:
         sector, t1, t2, err = 0, 0, 0, True
-    t1, t2, sat = hex_clamp(t1, t2)
+    t1, t2, sat = hex_clamp(t1, t2, g)
     c = dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm)
     return sector, dtc_shift(c, isign, hdr, hdf), sat, err
 

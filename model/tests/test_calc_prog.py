@@ -39,7 +39,8 @@ def _vec(rng: random.Random, compact: bool) -> dict:
         d.update(mode=rng.choice(range(8)), freq=f, fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
                  theta=rng.randint(0, 65535), v1=rng.choice(VS + (rng.randint(-32768, 32767),) * 3),
                  v2=rng.choice(VS + (rng.randint(-32768, 32767),) * 3), vf_boost=rng.randint(0, 65535),
-                 vf_slope=rng.randint(0, 65535), vf_mmax=rng.randint(0, 65535), dpwm=rng.randint(0, 3))
+                 vf_slope=rng.randint(0, 65535), vf_mmax=rng.randint(0, 65535), dpwm=rng.randint(0, 3),
+                 om=rng.randint(0, 1))
         if rng.random() < 0.5:                                     # dead-time compensation (DtWidth 10)
             hd = min(thr, 512)
             d.update(isign=rng.randint(0, 7), hdr=rng.choice([0, 1, hd, rng.randint(0, 512)]),
@@ -68,6 +69,15 @@ def _directed(compact: bool):
                                    mode=mode, dpwm=dpwm, v1=v1, v2=v2, theta=theta, freq=f,
                                    fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
                                    vf_boost=0x1000, vf_slope=0xFFFF if v1 < 0 else 0x0100, vf_mmax=0xFFFF)
+    # six-step overmodulation law: m from below the vertex to the largest, every angle corner, the angle-driven
+    # modes (V/f with m_max = m) and AB / DQ (the law does not apply there)
+    for mode in (fixed.MODE_FREQ, fixed.MODE_VF, fixed.MODE_POLAR, fixed.MODE_AB, fixed.MODE_DQ):
+        for m in (0x8000, M_VERTEX - 1, M_VERTEX, M_VERTEX + 1, M_VERTEX + 200, 0xC000, 0xFFFE, 0xFFFF):
+            for a16 in ANGLES:
+                for dpwm in (0, 3):
+                    yield dict(period=1536, thr=5, sector=a16 % 6, a16=a16, m=m, mode=mode, dpwm=dpwm, om=1,
+                               theta=a16, v1=m // 2, v2=-(m // 3), freq=0x7FFFFF, fabs=0xFFFF,
+                               vf_boost=0, vf_slope=0xFFFF, vf_mmax=m)
     # dead-time compensation: every current-sign pattern in every sector, compare values pushed below 0 and
     # above P (m near 0 and at the vertex, DPWM clamping a phase to a rail), the largest amounts
     for isign in range(8):
@@ -162,7 +172,7 @@ def test_idle_word_equals_word_1(dsp):
 @pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
 def test_input_operand_codes(dsp):
     """Every word of the engine's programs (Compact = 0) whose operand is an input (src = AS_IN) has an input
-    code 0..11: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
+    code 0..13: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
     product shift) only reaches in_q when the next step does not read it, which is why
     scripts/mutate_equivalent.json lists the mutant of that default as equivalent; a generator change that
     breaks this fails here (and that mutant must then be killed, not listed)."""
@@ -174,7 +184,7 @@ def test_input_operand_codes(dsp):
 
     reads = [(k, f(w, "opnd")) for k, w in enumerate(words) if f(w, "src") == cp.AS_IN]
     assert len(reads) > 10                                       # (inputs are read)
-    assert all(code & 0xF <= cp.IN_HDF for _, code in reads), reads
+    assert all(code & 0xF <= cp.IN_MV for _, code in reads), reads
 
 
 def test_misuse_is_refused():

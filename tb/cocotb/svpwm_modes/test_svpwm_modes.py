@@ -147,6 +147,44 @@ async def overmodulation_sweep(dut):
 
 
 @cocotb.test()
+async def overmodulation_six_step(dut):
+    """The six-step law (om_i = 1): m from just below the vertex magnitude 0x93CD to 0xFFFF in FREQ mode (the
+    vector turning), then POLAR and V/f (m from the law, up to vf_mmax = 0xFFFF) and AB (where the law does not
+    apply: the angle-keeping clamp); == model. The vector holds at the vertices more and more: the number of
+    compare-value sets with every phase at 0 or P (a vertex) grows with m, every update at m = 0xFFFF
+    (six-step); a run with om_i = 0 at m = 0xFFFF keeps the clamp (a vertex only at its own angle)."""
+    tb = CoreTB(dut)
+    steps = (fixed.M_VERTEX - 1, fixed.M_VERTEX + 64, 0xA000, 0xC000, 0xFFFF)
+    at_vertex = []
+    for m in steps:
+        u = base(m=m, om=1)
+        await tb.reset(u)
+        rtl, exp = await check(tb, u, lambda k: u, K + 2)
+        at_vertex.append(sum(1 for x in exp.updates if sum(c in (0, x.period) for c in x.cmp) == 3))
+    tb.dut._log.info("updates at a vertex per m step: %s of %d", at_vertex, K + 2)
+    # (below the vertex magnitude only the samples at a sector's own vertex angle sit at a vertex)
+    assert at_vertex[0] <= K // 16 < at_vertex[1] and at_vertex == sorted(at_vertex), at_vertex
+    assert at_vertex[-1] == K + 2, f"m = 0xFFFF: six-step, every update at a vertex ({at_vertex})"
+    u = base(m=0xFFFF, om=0)
+    await tb.reset(u)
+    rtl, exp = await check(tb, u, lambda k: u, K // 4)
+    n_v = sum(1 for x in exp.updates if sum(c in (0, x.period) for c in x.cmp) == 3)
+    assert 8 * n_v <= len(exp.updates), f"om = 0: the clamp, {n_v} of {len(exp.updates)} updates at a vertex"
+
+    def sched(k):
+        m = fixed.M_VERTEX + k * (0x10000 - fixed.M_VERTEX) // K if k < K else 0xFFFF
+        if k < K // 2:
+            return base(mode=fixed.MODE_POLAR, theta=theta16(3 * k), m=min(m, 0xFFFF), om=1, freq=0)
+        if k < K:
+            return base(mode=fixed.MODE_VF, vf_boost=min(m, 0xFFFF), vf_slope=0, vf_mmax=0xFFFF, om=1)
+        a = 2 * math.pi * k / K
+        return base(mode=fixed.MODE_AB, v1=vq(1.9 * math.cos(a)), v2=vq(1.9 * math.sin(a)), om=1, freq=0)
+    idle = sched(0)
+    await tb.reset(idle)
+    await check(tb, idle, sched, K + K // 4)
+
+
+@cocotb.test()
 async def dpwm_modes(dut):
     """DPWMMIN, DPWMMAX and DPWM1 (60 deg bus clamping), one revolution each at m = 0.85."""
     tb = CoreTB(dut)

@@ -41,6 +41,7 @@ MIN_PERIOD_COMPACT = fixed.LITE_MIN_PERIOD     # the same with the compact core 
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
 UPD = {"valley": 0, "peak": 1, "both": 2}
+OM = {"clamp": 0, "sixstep": 1}
 COMPACT_TEXT = "compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start, no MP"
 
 
@@ -378,6 +379,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("mode", choices=list(MODES))
     p.add_argument("--dpwm", choices=list(DPWM), help="zero-vector placement (default: unchanged)")
     p.add_argument("--upd", choices=list(UPD), help="compare load point (default: unchanged)")
+    p.add_argument("--om", choices=list(OM), help="overmodulation beyond the hexagon: the angle-keeping clamp or the "
+                   "six-step law (modes freq, vf, polar; default: unchanged)")
+    p = add("set-dtc", "dead-time compensation from the phase current signs (DTC register)")
+    p.add_argument("state", choices=("on", "off"))
+    p.add_argument("--isign", help="current signs {c, b, a} as 3 bits, 1 = negative, e.g. 0b101 (default: unchanged)")
     return ap
 
 
@@ -456,8 +462,16 @@ def run(args, board: Board) -> str:
             vals["dpwm"] = DPWM[args.dpwm]
         if args.upd:
             vals["upd"] = UPD[args.upd]
+        if args.om:
+            vals["om"] = OM[args.om]
         board.write_fields(R.CTRL, **vals)
         return ", ".join(f"CTRL.{k} = {v}" for k, v in vals.items())
+    if c == "set-dtc":
+        vals = {"en": int(args.state == "on")}
+        if args.isign is not None:
+            vals["isign"] = parse_int(args.isign)
+        board.write_fields(R.DTC, **vals)
+        return ", ".join(f"DTC.{k} = {v}" for k, v in vals.items())
     if c == "set-m":
         w = m_word(parse_num(args.m))
         board.write_fields(R.M, m=w)

@@ -174,6 +174,12 @@ def test_set_commands_write_exact_words():
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1, mode=2, dpwm=3, upd=2)
     cmd(fb, "stop")
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=2, dpwm=3, upd=2)
+    assert cmd(fb, "set-mode", "freq", "--om", "sixstep") == "CTRL.mode = 0, CTRL.om = 1"
+    assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=0, dpwm=3, upd=2, om=1)
+    assert cmd(fb, "set-dtc", "on", "--isign", "0b101") == "DTC.en = 1, DTC.isign = 5"
+    assert fb.regs[R.DTC.addr] == R.DTC.encode(en=1, isign=5) == 0x51
+    cmd(fb, "set-dtc", "off")
+    assert fb.regs[R.DTC.addr] == R.DTC.encode(en=0, isign=5)                   # the signs kept
 
 
 def test_status_and_reads():
@@ -300,8 +306,9 @@ def test_compact_board():
     assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]
     absent = [r for r in R.REGISTERS if not r.compact]
     assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
-                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP"}
+                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP", "DTC"}
     refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"], ["set-mp", "0.25"],
+               ["set-mode", "freq", "--om", "sixstep"], ["set-dtc", "on"],
                ["write", "CTRL.mode", "0"], ["write", "CTRL.sync_en", "1"], ["write", "ctrl.adc_trig", "1"],
                ["write", "CTRL", "0x101"], ["write", "CTRL", "0x2"], ["write", "CTRL", "-1"]]
     refused += [["write", r.name, "0"] for r in absent] + [["write", f"0x{r.addr:x}", "1"] for r in absent]
@@ -334,7 +341,7 @@ def _cli(args, env=None, timeout=30):
 
 def test_cli_help_and_port_errors():
     cmds = ["read", "write", "dump", "info", "status", "start", "stop", "clear-fault", "set-freq", "set-m",
-            "set-period", "set-dt", "set-mp", "set-mode"]
+            "set-period", "set-dt", "set-mp", "set-mode", "set-dtc"]
     for c in [[]] + [[c] for c in cmds]:
         r = _cli(c + ["--help"])
         assert r.returncode == 0 and "usage:" in r.stdout, (c, r.stderr)

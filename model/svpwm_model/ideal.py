@@ -171,3 +171,56 @@ def state_sequence(compare_values, period=None) -> list[State]:
     if codes.ndim != 1:
         raise ValueError("state_sequence takes one (C_a, C_b, C_c); use state_sequence_codes for arrays")
     return [((int(x) >> 2) & 1, (int(x) >> 1) & 1, int(x) & 1) for x in codes if x >= 0]
+
+
+# ---- overmodulation: the line fundamental of the two laws (floating point, from the geometry) -------------
+SIX_STEP = 2.0 * _SQRT3 / math.pi      # line fundamental of six-step operation, in Udc (1.1027)
+M_VERTEX_F = 2.0 / _SQRT3              # m of the hexagon's vertices
+
+
+def overmod_gain(m: float) -> float:
+    """The six-step law's stretch g as a real number (fixed.om_gain / 256): 1 + 256 (m - 2/sqrt3), at least 1."""
+    return 1.0 + 256.0 * max(0.0, m - M_VERTEX_F)
+
+
+def overmod_fundamental(m: float, six_step: bool = False, n: int = 7200) -> float:
+    """Line-to-line fundamental peak in Udc for a circular reference of magnitude m (m = 1: the inscribed
+    circle, fundamental 1.0 Udc), sampled continuously (n points per revolution): inside the hexagon the
+    reference itself; outside it the angle-keeping clamp (Minas eq. (5) with T0 = 0: the boundary point at
+    the reference's angle), and with ``six_step`` the vector's position on the hexagon side stretched from the
+    side's middle by g = overmod_gain(m) (the boundary point's distance from the middle times g, at most half
+    a side): held at the vertex where g times it reaches half a side. g = 1 is the clamp; g -> infinity
+    six-step (SIX_STEP). Fundamental = |mean(v e^(-j theta))| of the vector in inscribed-circle units."""
+    th = (np.arange(n) + 0.5) / n * _TWO_PI
+    sector, tp = split_angle(th)
+    da, db = m * np.sin(SECTOR_RAD - tp), m * np.sin(tp)
+    tot = da + db
+    out = tot > 1.0
+    q = np.minimum(da, db) / np.where(out, tot, 1.0)        # the nearer vertex's partner's fraction on the side
+    if six_step:
+        q = 0.5 - np.minimum(0.5, overmod_gain(m) * (0.5 - q))
+    first = da <= db
+    da = np.where(out, np.where(first, q, 1.0 - q), da)
+    db = np.where(out, np.where(first, 1.0 - q, q), db)
+    v = (da * np.exp(1j * sector * SECTOR_RAD) + db * np.exp(1j * (sector + 1) * SECTOR_RAD)) * (2.0 / _SQRT3)
+    return float(abs(np.mean(v * np.exp(-1j * th))))
+
+
+def overmod_m_for(fundamental: float, six_step: bool = True) -> float:
+    """The m whose line fundamental (overmod_fundamental) is ``fundamental`` Udc (bisection on the monotonic
+    map): the linear command of the overmodulation range. Raises beyond what the law reaches."""
+    hi = 2.0 - 2.0 ** -15
+    top = overmod_fundamental(hi, six_step)
+    if not 0.0 <= fundamental <= top:
+        raise ValueError(f"line fundamental {fundamental} Udc outside 0 .. {top:.5f} Udc "
+                         f"({'six-step law' if six_step else 'angle-keeping clamp'})")
+    if fundamental <= 1.0:
+        return fundamental
+    lo = 1.0
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if overmod_fundamental(mid, six_step) < fundamental:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)

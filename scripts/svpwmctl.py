@@ -366,7 +366,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("set-freq", "output frequency in Hz (negative = reverse rotation), modes freq and vf")
     p.add_argument("hz", help="e.g. 50, -12.5")
     p = add("set-m", "modulation index, 1.0 = inscribed circle, up to 1.99997 (the core clamps to the hexagon)")
-    p.add_argument("m", help="e.g. 0.9")
+    p.add_argument("m", help="e.g. 0.9; with --fundamental the line fundamental in Udc, e.g. 1.08")
+    p.add_argument("--fundamental", action="store_true",
+                   help="m is the wanted line-voltage fundamental in Udc: converted through the six-step law's "
+                        "map (ideal.overmod_m_for; set-mode --om sixstep), up to six-step, 1.1027")
     p = add("set-period", "carrier: switching frequency in Hz or half period in clocks")
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--fsw", help="switching (carrier) frequency in Hz: PERIOD = f_clk / (2 f_sw), rounded")
@@ -473,7 +476,11 @@ def run(args, board: Board) -> str:
         board.write_fields(R.DTC, **vals)
         return ", ".join(f"DTC.{k} = {v}" for k, v in vals.items())
     if c == "set-m":
-        w = m_word(parse_num(args.m))
+        if args.fundamental:
+            from svpwm_model.ideal import overmod_m_for
+            w = m_word(Fraction(overmod_m_for(float(parse_num(args.m)))))
+        else:
+            w = m_word(parse_num(args.m))
         board.write_fields(R.M, m=w)
         return f"M = 0x{w:04x} (m = {_fmt(Fraction(w, 0x8000))})"
     cfg = board.config()

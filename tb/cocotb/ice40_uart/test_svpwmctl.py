@@ -20,7 +20,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
-from svpwm_model import fixed  # noqa: E402
+from svpwm_model import fixed, ideal  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
 MAP_VERSION = f"{R.VERSION.field('major').reset}.{R.VERSION.field('minor').reset}"   # generated map
@@ -176,6 +176,11 @@ def test_set_commands_write_exact_words():
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=2, dpwm=3, upd=2)
     assert cmd(fb, "set-mode", "freq", "--om", "sixstep") == "CTRL.mode = 0, CTRL.om = 1"
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(mode=0, dpwm=3, upd=2, om=1)
+    cmd(fb, "set-m", "1.08", "--fundamental")                     # the six-step law's map (ideal.py)
+    w = fb.regs[R.M.addr]
+    assert w == round(ideal.overmod_m_for(1.08) * 0x8000) and 0x93CD < w < 0x9500
+    assert abs(ideal.overmod_fundamental(w / 0x8000, True) - 1.08) < 2e-3
+    assert cmd(fb, "set-m", "0.9", "--fundamental") == "M = 0x7333 (m = 0.899994)"  # linear range: m itself
     assert cmd(fb, "set-dtc", "on", "--isign", "0b101") == "DTC.en = 1, DTC.isign = 5"
     assert fb.regs[R.DTC.addr] == R.DTC.encode(en=1, isign=5) == 0x51
     cmd(fb, "set-dtc", "off")
@@ -255,7 +260,7 @@ def test_bad_values_refused_nothing_written(argv, match):
 
 def test_locked_and_period_rules():
     fb = FakeBoard()
-    p = fixed.MIN_PERIOD                               # the shortest period (odd: 251)
+    p = fixed.MIN_PERIOD                               # the shortest period (254)
     cmd(fb, "set-period", "--clocks", str(p))
     with pytest.raises(ValueError, match="PERIOD >= 2"):
         cmd(fb, "set-dt", f"{(p // 2 + 1) / 48:.4f}")  # p // 2 + 1 clocks at 48 MHz: 2 dt > p

@@ -27,6 +27,9 @@
 //             bits.
 // Latency: svpwm_pkg::core_latency(Compact) clocks from start_i to done_o (Compact = 0:
 // svpwm_pkg::calc_latency(0, Dsp)).
+// Volt-second carry: carry_i is added to each phase's command before the minimum-pulse rule; carry_o is
+// what the rule dropped or widened, limited to +-ceil(thr / 2) (fixed.snap_carry), for the core to give back
+// in the next update.
 // Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
 // until done_o (the core's sampled registers do), except fabs_i, period_i, thr_i, hdr_i and hdf_i, which may
 // arrive one
@@ -63,13 +66,17 @@ module svpwm_calc #(
   input  logic [2:0]            isign_i,      // current signs {c, b, a}, 1 = negative (compensation)
   input  logic [DtWidth-1:0]    hdr_i,        // compensation: C - hdr_i for a positive current (0: off)
   input  logic [DtWidth-1:0]    hdf_i,        // compensation: C + hdf_i for a negative current (0: off)
+  input  logic [3*DtWidth+5:0]  carry_i,      // {c, b, a} volt-second carry in, DtWidth + 2 bits signed each
   output logic                  busy_o,       // a computation is running
   output logic                  done_o,       // one-cycle pulse: the outputs below are new
   output logic [2:0]            sector_o,     // sector of the result
   output logic [3*CntWidth-1:0] cmp_o,        // {C_c, C_b, C_a}, each in [0, P], snapped
   output logic                  sat_o,        // the reference was clamped to the hexagon
-  output logic                  err_o         // invalid mode: zero vector
+  output logic                  err_o,        // invalid mode: zero vector
+  output logic [3*DtWidth+5:0]  carry_o       // {c, b, a} carry out: command - snapped, at most +-ceil(thr/2)
 );
+  localparam int EW = DtWidth + 2;            // carry width (signed): |carry| <= ceil(thr / 2) <= 2^DtWidth
+
   if (Compact) begin : gen_lite
     svpwm_duty_lite #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_duty (
       .clk_i    (clk_i),
@@ -88,10 +95,11 @@ module svpwm_calc #(
       .sat_o    (sat_o)
     );
     assign err_o = 1'b0;
+    assign carry_o = '0;
 
     logic unused_full;
     assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp,
-                           isign_i, hdr_i, hdf_i, om_i};
+                           isign_i, hdr_i, hdf_i, om_i, carry_i};
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
@@ -365,13 +373,22 @@ module svpwm_calc #(
 
     // ---- AUX: the next step's non-RAM operand -------------------------------------------------------------
     // the input the word selects (the operand of the step after next), registered sign-extended in in_q
+    // per phase: the compensation by its current sign plus its carry, registered (the inputs hold from the
+    // start; the program reads these late), then per class the phase's value (dtc_in)
     logic [15:0] in_sel, hdf16, mhdr16;
+    logic [15:0] dpe_d [3];
+    logic [15:0] dpe_q [3];
     logic [15:0] dtc_in [3];
     logic        in_signed;
     assign hdf16  = 16'(hdf_i);
     assign mhdr16 = 16'(0) - 16'(hdr_i);
+    for (genvar ph = 0; ph < 3; ph++) begin : gen_dpe
+      assign dpe_d[ph] = (isign_i[ph] ? hdf16 : mhdr16) + 16'($signed(carry_i[ph*EW +: EW]));
+      always_ff @(posedge clk_i) dpe_q[ph] <= dpe_d[ph];
+    end
     for (genvar j = 0; j < 3; j++) begin : gen_dtc_in
-      assign dtc_in[j] = |(isign_i & is_cls[j]) ? hdf16 : mhdr16;
+      assign dtc_in[j] = ({16{is_cls[j][0]}} & dpe_q[0]) | ({16{is_cls[j][1]}} & dpe_q[1])
+                       | ({16{is_cls[j][2]}} & dpe_q[2]);
     end
     logic [16:0] in_d, in_q;
     always_comb begin
@@ -474,14 +491,30 @@ module svpwm_calc #(
       endcase
     end
 
+    // the volt-second carry (fixed.snap_carry): the command the minimum-pulse rule snaps is the value
+    // written to its RAM word (RSnap); the carry is command - snapped (the ACC of the out step), limited to
+    // +-hthr = +-ceil(thr / 2) (hthr registered: thr_i holds)
+    logic [W-1:0]  cmd_d, cmd_q, cdiff;
+    logic [EW-1:0] ecar, hthr_q;
+    logic          c_hi, c_lo;
+    assign cmd_d = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q : cmd_q;
+    assign cdiff = cmd_q - acc_q;
+    assign c_hi  = $signed(cdiff) > $signed(W'(hthr_q));
+    assign c_lo  = $signed(cdiff) < -$signed(W'(hthr_q));
+    assign ecar  = c_hi ? hthr_q : c_lo ? EW'(0) - hthr_q : cdiff[EW-1:0];
+    always_ff @(posedge clk_i) hthr_q <= EW'(({1'b0, thr_i} + 1'b1) >> 1);
+
     // out: the phases whose Table 4-3 code is of this class take ACC (0: the highest, 1: the lowest, 2 / 3:
-    // the middle compare value)
+    // the middle compare value) and their carry
+    logic [3*EW-1:0] car_d, car_q;
     for (genvar ph = 0; ph < 3; ph++) begin : gen_out
       logic [1:0] cls;
+      logic       ld;
       assign cls = (sel[2*ph +: 2] == 2'd0) ? 2'(svpwm_pkg::OutHi)
                  : (sel[2*ph +: 2] == 2'd1) ? 2'(svpwm_pkg::OutLo) : 2'(svpwm_pkg::OutMid);
-      assign cmp_d[ph*CntWidth +: CntWidth] = (out_op != 2'(svpwm_pkg::OutNone) && out_op == cls)
-                                              ? acc_q[CntWidth-1:0] : cmp_q[ph*CntWidth +: CntWidth];
+      assign ld  = out_op != 2'(svpwm_pkg::OutNone) && out_op == cls;
+      assign cmp_d[ph*CntWidth +: CntWidth] = ld ? acc_q[CntWidth-1:0] : cmp_q[ph*CntWidth +: CntWidth];
+      assign car_d[ph*EW +: EW] = ld ? ecar : car_q[ph*EW +: EW];
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -524,6 +557,8 @@ module svpwm_calc #(
         ang_q   <= '0;
         sec_q   <= '0;
         cmp_q   <= '0;
+        car_q   <= '0;
+        cmd_q   <= '0;
         done_q  <= 1'b0;
       end else begin
         pc_q    <= pc_d;
@@ -564,6 +599,8 @@ module svpwm_calc #(
         ang_q   <= ang_d;
         sec_q   <= sec_d;
         cmp_q   <= cmp_d;
+        car_q   <= car_d;
+        cmd_q   <= cmd_d;
         done_q  <= done && !abort_i;
       end
     end
@@ -572,12 +609,13 @@ module svpwm_calc #(
     assign done_o   = done_q;
     assign sector_o = sec_q;
     assign cmp_o    = cmp_q;
+    assign carry_o  = car_q;
     assign sat_o    = !flags_q[svpwm_pkg::FSatn];
     assign err_o    = (mode > 3'(svpwm_pkg::ModeDq));   // (from mode_i itself, as the other results: not the
                                                         // registered decode, which lags mode_i by a clock)
 
     logic unused;
-    assign unused = ^{p_sh, rsel};          // (rsel: the ROM address decodes the misc code itself)
+    assign unused = ^{p_sh, rsel, cdiff[W-1:EW]};          // (rsel: the ROM address decodes the misc code itself)
   end
 
 endmodule

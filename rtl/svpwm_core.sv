@@ -81,6 +81,7 @@ module svpwm_core #(
   input  logic                        dtc_en_i,        // dead-time compensation on (sampled with the reference)
   input  logic [2:0]                  isign_i,         // {c, b, a} phase current signs, 1 = negative (into
                                                        // the leg), sampled with the reference
+  input  logic                        vsc_en_i,        // volt-second carry of the minimum-pulse rule on
   input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
   input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
   input  logic                        sync_i,          // another core's sync_o (same clock domain)
@@ -338,7 +339,7 @@ module svpwm_core #(
   logic [2:0]  mode_q;
   logic [15:0] s0_d, s0_q, s1_d, s1_q, s2_d, s2_q;
   logic [1:0]  dpwm_q;
-  logic        dtc_q, om_q;
+  logic        dtc_q, om_q, vsc_q;
   logic [2:0]  isign_q;
   logic        in_vf, in_xy;
 
@@ -358,6 +359,7 @@ module svpwm_core #(
       dtc_q   <= 1'b0;
       isign_q <= '0;
       om_q    <= 1'b0;
+      vsc_q   <= 1'b0;
     end else if (event_now) begin
       mode_q <= mode_i;
       s0_q   <= s0_d;
@@ -367,6 +369,7 @@ module svpwm_core #(
       dtc_q   <= !Compact && dtc_en_i;
       isign_q <= isign_i;
       om_q    <= !Compact && om_i;
+      vsc_q   <= !Compact && vsc_en_i;
     end
   end
 
@@ -408,6 +411,13 @@ module svpwm_core #(
   logic [CntWidth-1:0]   calc_period_d, calc_period_q;
   logic [DtWidth:0]      calc_thr_d, calc_thr_q;
   logic [DtWidth-1:0]    calc_hdr_d, calc_hdr_q, calc_hdf_d, calc_hdf_q, hd_dt;
+  // volt-second carry (fixed.snap_carry): per phase what the minimum-pulse rule dropped or widened at the
+  // last update (car_q, for the period car_per_q), given to the next computation for the same period; cleared
+  // while stopped or tripped, and not given across a period change
+  localparam int EW = DtWidth + 2;
+  logic [3*EW-1:0]       car_d, car_q, calc_car_d, calc_car_q, snap_car;
+  logic                  trip_sync, brake;     // (the trip state: svpwm_gate_out, below)
+  logic [CntWidth-1:0]   car_per_d, car_per_q;
 
   // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the dead time the
   // update is computed for, 0 when off
@@ -420,11 +430,13 @@ module svpwm_core #(
     calc_thr_d    = calc_thr_q;
     calc_hdr_d    = calc_hdr_q;
     calc_hdf_d    = calc_hdf_q;
+    calc_car_d    = calc_car_q;
     if (start_q) begin
       calc_period_d = ev_valley_q ? period_next_q : period_act;
       calc_thr_d    = ev_valley_q ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : {1'b0, dt_q} + {1'b0, mp_q};
       calc_hdr_d    = dtc_q ? DtWidth'(({1'b0, hd_dt} + 1'b1) >> 1) : '0;
       calc_hdf_d    = calc_hdr_d;
+      calc_car_d    = (vsc_q && calc_period_d == car_per_q) ? car_q : '0;
     end
   end
 
@@ -462,12 +474,14 @@ module svpwm_core #(
     .isign_i    (isign_q),
     .hdr_i      (calc_hdr_q),
     .hdf_i      (calc_hdf_q),
+    .carry_i    (calc_car_q),
     .busy_o     (duty_busy),
     .done_o     (snap_done),
     .sector_o   (duty_sector),
     .cmp_o      (snap_cmp),
     .sat_o      (duty_sat),
-    .err_o      (duty_err)
+    .err_o      (duty_err),
+    .carry_o    (snap_car)
   );
 
   // ---- shadow and active registers ---------------------------------------------------------------
@@ -495,6 +509,8 @@ module svpwm_core #(
     err_d          = err_q;
     update_d       = 1'b0;
     pending_d      = pending_q;
+    car_d          = car_q;
+    car_per_d      = car_per_q;
     if (!run || event_now) begin          // the frequency word steps the angle from the sample on
       freq_d         = freq_clamped;
       freq_clamp_d   = freq_over;
@@ -524,8 +540,11 @@ module svpwm_core #(
         valid_d   = 1'b1;
         update_d  = 1'b1;
         pending_d = 1'b0;
+        car_d     = vsc_q ? snap_car : '0;
+        car_per_d = calc_period_q;
       end
     end
+    if (!run || trip_sync) car_d = '0;     // a stop or a trip: no carry into the next start
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -546,6 +565,9 @@ module svpwm_core #(
       calc_thr_q     <= '0;
       calc_hdr_q     <= '0;
       calc_hdf_q     <= '0;
+      calc_car_q     <= '0;
+      car_q          <= '0;
+      car_per_q      <= CntWidth'(MinPeriod);
       freq_q         <= '0;
       period_next_q  <= CntWidth'(MinPeriod);
       dt_next_q      <= '0;
@@ -577,6 +599,9 @@ module svpwm_core #(
       calc_thr_q     <= calc_thr_d;
       calc_hdr_q     <= calc_hdr_d;
       calc_hdf_q     <= calc_hdf_d;
+      calc_car_q     <= calc_car_d;
+      car_q          <= car_d;
+      car_per_q      <= car_per_d;
       freq_q         <= freq_d;
       period_next_q  <= period_next_d;
       dt_next_q      <= dt_next_d;
@@ -610,7 +635,6 @@ module svpwm_core #(
   );
 
   // trip state as the (synchronous) dead-time FSMs see it: synchronised fault or latched trip
-  logic       trip_sync, brake;
   logic [2:0] hi_req, lo_req;
 
   assign brake = trip_sync && safe_lo_q;

@@ -71,7 +71,7 @@ module svpwm_mmio #(
   end
 
   // ---- register block <-> core -------------------------------------------------------------------
-  logic                        en, sync_en, trip_cbc, safe_lo, lock, fault_clear, dtc_en, om;
+  logic                        en, sync_en, trip_cbc, safe_lo, lock, fault_clear, dtc_en, om, vsc_off;
   logic [2:0]                  isign;
   logic [1:0]                  pol, upd, dpwm, adc_trig;
   logic [2:0]                  mode;
@@ -101,7 +101,7 @@ module svpwm_mmio #(
     .req_i (req_i), .we_i (we_i), .addr_i (addr_i), .wdata_i (wdata_i), .be_i (be_i), .rdata_o (rdata_o),
     .ctrl_en_o (en), .ctrl_sync_en_o (sync_en), .ctrl_trip_cbc_o (trip_cbc), .ctrl_safe_lo_o (safe_lo),
     .ctrl_pol_o (pol), .ctrl_lock_o (lock), .ctrl_fault_clear_o (fault_clear), .ctrl_mode_o (mode),
-    .ctrl_upd_o (upd), .ctrl_dpwm_o (dpwm), .ctrl_om_o (om), .ctrl_adc_trig_o (adc_trig),
+    .ctrl_upd_o (upd), .ctrl_dpwm_o (dpwm), .ctrl_om_o (om), .ctrl_vsc_off_o (vsc_off), .ctrl_adc_trig_o (adc_trig),
     .freq_o (freq), .m_o (m), .theta_o (theta), .v1_o (v1), .v2_o (v2),
     .vf_boost_o (vf_boost), .vf_slope_o (vf_slope), .vf_mmax_o (vf_mmax),
     .period_o (period), .dt_o (dt), .mp_o (mp), .presc_o (presc), .dtc_en_o (dtc_en), .dtc_isign_o (isign),
@@ -130,7 +130,7 @@ module svpwm_mmio #(
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
-    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .upd_i (upd), .presc_i (presc), .period_i (period_core),
+    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_en_i (!vsc_off), .upd_i (upd), .presc_i (presc), .period_i (period_core),
     .dt_i (dt), .mp_i (mp), .dtc_en_i (dtc_en), .isign_i (isign), .adc_trig_i (adc_trig),
     .sync_en_i (sync_en), .sync_i (sync_i),
     .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),

@@ -56,6 +56,7 @@ module svpwm_regs #(
   output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW (not in the compact variant)
   output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW (not in the compact variant)
   output logic         ctrl_om_o,              // CTRL.om: RW (not in the compact variant)
+  output logic         ctrl_vsc_off_o,         // CTRL.vsc_off: RW (not in the compact variant)
   output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW (not in the compact variant)
   output logic [23:0]  freq_o,                 // FREQ.freq: RW
   output logic [15:0]  m_o,                    // M.m: RW
@@ -303,6 +304,7 @@ module svpwm_regs #(
   logic [1:0]   ctrl_upd_q;
   logic [1:0]   ctrl_dpwm_q;
   logic         ctrl_om_q;
+  logic         ctrl_vsc_off_q;
   logic [1:0]   ctrl_adc_trig_q;
   logic [15:0]  theta_q;
   logic [15:0]  v1_q;
@@ -320,6 +322,7 @@ module svpwm_regs #(
     logic [1:0]   ctrl_upd_d, ctrl_upd_wr;
     logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_wr;
     logic         ctrl_om_d, ctrl_om_wr;
+    logic         ctrl_vsc_off_d, ctrl_vsc_off_wr;
     logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_wr;
     logic [15:0]  theta_d, theta_wr;
     logic [15:0]  v1_d, v1_wr;
@@ -336,6 +339,7 @@ module svpwm_regs #(
     assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
     assign ctrl_dpwm_wr = be_i[2] ? wdata_i[17:16] : ctrl_dpwm_q[1:0];
     assign ctrl_om_wr = be_i[2] ? wdata_i[18] : ctrl_om_q;
+    assign ctrl_vsc_off_wr = be_i[2] ? wdata_i[19] : ctrl_vsc_off_q;
     assign ctrl_adc_trig_wr = be_i[2] ? wdata_i[21:20] : ctrl_adc_trig_q[1:0];
     assign theta_wr = {(be_i[1] ? wdata_i[15:8] : theta_q[15:8]), (be_i[0] ? wdata_i[7:0] : theta_q[7:0])};
     assign v1_wr = {(be_i[1] ? wdata_i[15:8] : v1_q[15:8]), (be_i[0] ? wdata_i[7:0] : v1_q[7:0])};
@@ -354,6 +358,7 @@ module svpwm_regs #(
       ctrl_upd_d = ctrl_upd_q;
       ctrl_dpwm_d = ctrl_dpwm_q;
       ctrl_om_d = ctrl_om_q;
+      ctrl_vsc_off_d = ctrl_vsc_off_q;
       ctrl_adc_trig_d = ctrl_adc_trig_q;
       theta_d = theta_q;
       v1_d = v1_q;
@@ -371,6 +376,7 @@ module svpwm_regs #(
         ctrl_upd_d = ctrl_upd_wr;
         ctrl_dpwm_d = ctrl_dpwm_wr;
         ctrl_om_d = ctrl_om_wr;
+        ctrl_vsc_off_d = ctrl_vsc_off_wr;
         ctrl_adc_trig_d = ctrl_adc_trig_wr;
       end
       if (wr && sel[SelTheta]) begin
@@ -410,6 +416,7 @@ module svpwm_regs #(
         ctrl_upd_q <= 2'h0;
         ctrl_dpwm_q <= 2'h0;
         ctrl_om_q <= 1'h0;
+        ctrl_vsc_off_q <= 1'h0;
         ctrl_adc_trig_q <= 2'h0;
         theta_q <= 16'h0;
         v1_q <= 16'h0;
@@ -427,6 +434,7 @@ module svpwm_regs #(
         ctrl_upd_q <= ctrl_upd_d;
         ctrl_dpwm_q <= ctrl_dpwm_d;
         ctrl_om_q <= ctrl_om_d;
+        ctrl_vsc_off_q <= ctrl_vsc_off_d;
         ctrl_adc_trig_q <= ctrl_adc_trig_d;
         theta_q <= theta_d;
         v1_q <= v1_d;
@@ -446,6 +454,7 @@ module svpwm_regs #(
     assign ctrl_upd_q = 2'h0;
     assign ctrl_dpwm_q = 2'h0;
     assign ctrl_om_q = 1'h0;
+    assign ctrl_vsc_off_q = 1'h0;
     assign ctrl_adc_trig_q = 2'h0;
     assign theta_q = 16'h0;
     assign v1_q = 16'h0;
@@ -470,7 +479,7 @@ module svpwm_regs #(
   logic [31:0] rd_config;
   assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
-  assign rd_ctrl = {10'h0, ctrl_adc_trig_q, 1'h0, ctrl_om_q, ctrl_dpwm_q, 2'h0, ctrl_upd_q, 1'h0, ctrl_mode_q, 1'h0, ctrl_lock_q, ctrl_pol_q, ctrl_safe_lo_q, ctrl_trip_cbc_q, ctrl_sync_en_q, ctrl_en_q};
+  assign rd_ctrl = {10'h0, ctrl_adc_trig_q, ctrl_vsc_off_q, ctrl_om_q, ctrl_dpwm_q, 2'h0, ctrl_upd_q, 1'h0, ctrl_mode_q, 1'h0, ctrl_lock_q, ctrl_pol_q, ctrl_safe_lo_q, ctrl_trip_cbc_q, ctrl_sync_en_q, ctrl_en_q};
   logic [31:0] rd_freq;
   assign rd_freq = {8'h0, freq_q};
   logic [31:0] rd_m;
@@ -578,6 +587,7 @@ module svpwm_regs #(
   assign ctrl_upd_o = ctrl_upd_q;
   assign ctrl_dpwm_o = ctrl_dpwm_q;
   assign ctrl_om_o = ctrl_om_q;
+  assign ctrl_vsc_off_o = ctrl_vsc_off_q;
   assign ctrl_adc_trig_o = ctrl_adc_trig_q;
   assign freq_o = freq_q;
   assign m_o = m_q;

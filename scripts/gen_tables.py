@@ -101,7 +101,7 @@ def render_sector_sel() -> str:
 PROGRAMS = ((0, 1), (1, 0), (0, 0), (1, 1))
 # calc_prog constant groups exported to the package: prefix -> SV type width
 CODE_GROUPS = ("WR_", "MISC_", "AS_", "RC_", "BINV_", "CIN_", "PRED_", "IN_", "ROM_", "OUT_", "SEC_", "MB_",
-               "F_", "C_")
+               "F_", "C_", "R_")
 
 
 def _camel(name: str) -> str:

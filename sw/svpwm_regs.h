@@ -90,6 +90,10 @@ extern "C" {
 #define SVPWM__CTRL__OM_bp 18
 #define SVPWM__CTRL__OM_bw 1
 #define SVPWM__CTRL__OM_reset 0x0
+#define SVPWM__CTRL__VSC_OFF_bm 0x80000
+#define SVPWM__CTRL__VSC_OFF_bp 19
+#define SVPWM__CTRL__VSC_OFF_bw 1
+#define SVPWM__CTRL__VSC_OFF_reset 0x0
 #define SVPWM__CTRL__ADC_TRIG_bm 0x300000
 #define SVPWM__CTRL__ADC_TRIG_bp 20
 #define SVPWM__CTRL__ADC_TRIG_bw 2

@@ -518,10 +518,12 @@ class Machine:
                inp["period"], inp["thr"], 0, 0, 0,
                fixed.M_VERTEX if inp.get("om", 0) and not (is_ab or is_dq) else 0xFFFF]
         hdr, hdf = inp.get("hdr", 0), inp.get("hdf", 0)
+        carry = tuple(inp.get("carry", (0, 0, 0)))
         isign = 0 if self.prog.compact else inp.get("isign", 0) & 7
         if self.prog.compact:
             ins = [ins[0]] + [0] * 7 + ins[8:10] + [0, 0, 0, 0xFFFF]
             hdr = hdf = 0
+            carry = (0, 0, 0)
         ins += [0] * 2
         ram = [0] * RAM_WORDS
         for a, v in RAM_INIT.items():
@@ -558,6 +560,8 @@ class Machine:
         ser_left = 0
         ser_prod = None
         cmp = [0, 0, 0] if junk is None else [junk.getrandbits(self.cw) for _ in range(3)]
+        e_out = [0, 0, 0] if junk is None else [junk.randint(-1000, 1000) for _ in range(3)]
+        cmd = 0 if junk is None else junk.randint(-(1 << 20), 1 << 20)
         table = fixed.sine_table()
         out = None
         for k, w in enumerate(self.words):
@@ -571,8 +575,8 @@ class Machine:
             c[C_MIDSGN] = int(midneg) ^ flags[F_FIRST]
             c[C_NV1N], c[C_NHALF] = 1 - flags[F_V1N], 1 - flags[F_HALF]
             for isel_d, cls in ((IN_DHI, OUT_HI), (IN_DLO, OUT_LO), (IN_DMID, OUT_MID)):
-                neg = any((isign >> ph) & 1 and sel_class(sel[ph]) == cls for ph in range(3))
-                ins[isel_d] = (hdf if neg else -hdr) & 0xFFFF
+                ph = [p_ for p_ in range(3) if sel_class(sel[p_]) == cls][0]
+                ins[isel_d] = ((hdf if (isign >> ph) & 1 else -hdr) + carry[ph]) & 0xFFFF
             if k == 0:
                 # idle word: only its next fields matter
                 a_val, b_val, s = 0, 0, 0
@@ -618,6 +622,8 @@ class Machine:
                 if w["we"] and pred:
                     assert w["wa"] not in ZERO_WORDS
                     ram[w["wa"]] = acc
+                    if w["wa"] == R_SNAP:                 # the command the minimum-pulse rule snaps
+                        cmd = _sx(acc, W)
                 # a flag set / Q shift takes the sign registered in its step one clock later
                 if pend_f is not None:
                     flags[pend_f] = sign_q
@@ -643,6 +649,9 @@ class Machine:
                     for ph in range(3):
                         if sel_class(sel[ph]) == w["out"]:
                             cmp[ph] = acc & ((1 << self.cw) - 1)
+                            # the volt-second carry (fixed.snap_carry): command - snapped, limited to +-hthr
+                            hthr = (inp["thr"] + 1) >> 1
+                            e_out[ph] = max(-hthr, min(hthr, cmd - _sx(acc, W)))
                 i = (ang_p >> 8) & 0xFF
                 addr = {ROM_OFF: 0, ROM_I: i, ROM_I1: i + 1, ROM_N: 256 - i, ROM_N1: 255 - i}[w["rsel"]]
                 n_rom = table[addr]
@@ -661,6 +670,7 @@ class Machine:
                         assert ser_left == 0, f"step {k}: MA changed while the serial multiplier runs"
                 if w["done"]:
                     out = (sec, tuple(cmp), not flags[F_SATN], is_err)
+                    self.e_out = tuple(e_out)
                 ma, mb, ang_p, ang, sec_p, sec, rom_q = n_ma, n_mb, ang, n_ang, sec, n_sec, n_rom
             # (the start clock: ANG and the sector load the inputs, which the model holds from the start on;
             # ang_p / sec_p keep the state from before the start)
@@ -1004,6 +1014,12 @@ def calc_latency(compact: bool = False, dsp: bool | None = None) -> int:
 
 def expect(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int], bool, bool]:
     """What the calculator must return: fixed.modulate + fixed.snap_min_pulse per phase."""
+    return expect_carry(inp, compact)[:4]
+
+
+def expect_carry(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int], bool, bool,
+                                                            tuple[int, int, int]]:
+    """expect() and the volt-second carry out of each phase (fixed.snap_carry; inp["carry"]: the carry in)."""
     P, thr = inp["period"], inp["thr"]
     if compact:
         sector, c, sat, err = fixed.modulate(fixed.MODE_FREQ, inp.get("sector", 0), inp.get("a16", 0), P,
@@ -1014,5 +1030,6 @@ def expect(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int],
             m=inp.get("m", 0), theta=inp.get("theta", 0), v1=inp.get("v1", 0), v2=inp.get("v2", 0),
             vf_boost=inp.get("vf_boost", 0), vf_slope=inp.get("vf_slope", 0), vf_mmax=inp.get("vf_mmax", 0),
             dpwm=inp.get("dpwm", 0), isign=inp.get("isign", 0) & 7, hdr=inp.get("hdr", 0), hdf=inp.get("hdf", 0),
-            om=inp.get("om", 0))
-    return sector, tuple(fixed.snap_min_pulse(x, P, thr) for x in c), sat, err
+            om=inp.get("om", 0), carry=tuple(inp.get("carry", (0, 0, 0))))
+    sc = [fixed.snap_carry(x, P, thr) for x in c]
+    return sector, tuple(x for x, _ in sc), sat, err, tuple(e for _, e in sc)

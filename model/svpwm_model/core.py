@@ -53,6 +53,8 @@ class Inputs:
     isign: int = 0          # current signs {c, b, a}, 1 = negative (dead-time compensation)
     dtc: int = 0            # 1: dead-time compensation on (not in the compact core)
     om: int = 0             # overmodulation law: 0 angle-keeping clamp, 1 six-step (not in the compact core)
+    vsc: int = 0            # 1: volt-second carry of the minimum-pulse rule (the register map's default; not in
+                            # the compact core)
 
 
 @dataclass(frozen=True)
@@ -68,6 +70,8 @@ class Update:
     sat: bool
     err: bool
     period: int             # half period the values were computed for
+    carry_in: tuple[int, int, int] = (0, 0, 0)    # volt-second carry added before the minimum-pulse rule
+    carry: tuple[int, int, int] = (0, 0, 0)       # what the rule dropped or widened (given to the next update)
 
 
 @dataclass
@@ -107,7 +111,7 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
 
 def _compact(u: Inputs) -> Inputs:
     """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler."""
-    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0, om=0)
+    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0, om=0, vsc=0)
 
 
 def _upd_code(upd: int) -> int:
@@ -169,6 +173,9 @@ class CoreModel:
             th_t = to
             return theta
 
+        carry, carry_per = (0, 0, 0), None   # volt-second carry of the last update taken, and its period
+        #                                      (a run starts with none: the core clears it while stopped)
+
         def compute(u: Inputs, s: int, period: int, dt: int, mp: int, at_peak: bool) -> Update:
             nonlocal f_cur
             th = advance(s)                     # theta(S): the old frequency word up to S
@@ -177,11 +184,14 @@ class CoreModel:
             a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
             thr = dt + mp
             hdr, hdf = fixed.dtc_amounts(dt, dt, bool(u.dtc))
+            c_in = carry if (u.vsc and period == carry_per) else (0, 0, 0)
             sec, cmp, sat, err = fixed.modulate(u.mode, sector, a16, period, freq=f_cur, m=u.m, theta=u.theta,
                                                 v1=u.v1, v2=u.v2, vf_boost=u.vf_boost, vf_slope=u.vf_slope,
                                                 vf_mmax=u.vf_mmax, dpwm=u.dpwm, isign=u.isign & 7, hdr=hdr,
-                                                hdf=hdf, om=u.om)
-            cmp = tuple(fixed.snap_min_pulse(c, period, thr) for c in cmp)
+                                                hdf=hdf, om=u.om, carry=c_in)
+            sc = [fixed.snap_carry(c, period, thr) for c in cmp]
+            cmp = tuple(x for x, _ in sc)
+            c_out = tuple(e for _, e in sc) if u.vsc else (0, 0, 0)
             if u.mode in (fixed.MODE_FREQ, fixed.MODE_POLAR):
                 m_used = u.m
             elif u.mode == fixed.MODE_VF:
@@ -189,6 +199,7 @@ class CoreModel:
             else:
                 m_used = None
             return Update(load=s + lead, sample=s, at_peak=at_peak, theta=th, m=m_used, sector=sec, cmp=cmp,
+                          carry_in=c_in, carry=c_out,
                           sat=sat, err=err, period=period)
 
         n_total = n_periods if stop is None else n_periods + 1
@@ -221,6 +232,7 @@ class CoreModel:
                     if stop_cycle is None or up.load - 1 < stop_cycle + fixed.START_DELAY:   # taken while running
                         r.updates.append(up)
                         active = up
+                        carry, carry_per = up.carry, up.period
             if not last:
                 r.cmp_peak.append(active.cmp if active else None)
             halves.append((pk, p_cur, active))
@@ -239,6 +251,7 @@ class CoreModel:
                 up = compute(u, t + 2 * p_cur - lead, p_next, u.dt, u.mp, False)
                 r.updates.append(up)
                 active = up
+                carry, carry_per = up.carry, up.period
             t += 2 * p_cur
             p_cur, dt_cur, mp_cur = p_next, u.dt, u.mp
         if stop is None:

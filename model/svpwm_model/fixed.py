@@ -120,6 +120,18 @@ def snap_min_pulse(c: int, period: int, thr: int) -> int:
     return c
 
 
+def snap_carry(c: int, period: int, thr: int) -> tuple[int, int]:
+    """The minimum-pulse rule with its volt-second carry: (snap_min_pulse(c), e), e = what the rule dropped or
+    widened, c - snapped, limited to +-hthr = +-ceil(thr / 2). The core adds e to the same phase's next
+    command (c here includes the carry in): a first-order error feedback, so over a few periods the average
+    pulse equals the command. For a command inside [0, P] the limit never acts (the rule moves a value to the
+    nearer end: |e| <= hthr); it bounds what a command beyond a rail (dead-time compensation at a clamped
+    phase) would pile up."""
+    snapped = snap_min_pulse(c, period, thr)
+    hthr = (thr + 1) >> 1
+    return snapped, max(-hthr, min(hthr, c - snapped))
+
+
 def sines(a16: int) -> tuple[int, int]:
     """sin(60 deg - theta') and sin(theta') in UQ0.16 by linear interpolation between ROM points.
 
@@ -221,7 +233,8 @@ def dtc_amounts(dt_r: int, dt_f: int, en: bool) -> tuple[int, int]:
     return (dt_r + 1) >> 1, (dt_f + 1) >> 1
 
 
-def dtc_shift(c: tuple[int, int, int], isign: int, hdr: int, hdf: int) -> tuple[int, int, int]:
+def dtc_shift(c: tuple[int, int, int], isign: int, hdr: int, hdf: int,
+              carry: tuple[int, int, int] = (0, 0, 0)) -> tuple[int, int, int]:
     """Pulse-based dead-time compensation (applied after the zero-vector placement, before the minimum-pulse
     rule). ``isign`` bit k (phase a = bit 0) is the sign of phase k's current, 1 = negative (flowing into the
     leg). During a dead time both switches of a leg are off and the current alone sets the pole through the
@@ -231,8 +244,9 @@ def dtc_shift(c: tuple[int, int, int], isign: int, hdr: int, hdf: int) -> tuple[
     C - hdr for a positive current, C + hdf for a negative one. The result may leave [0, P]: the
     minimum-pulse rule (snap_min_pulse) maps it back. With the compensation the pole *voltages* keep their
     order (each moves by about dt / 2 the same way); the switch commands of two phases within a dead time of
-    each other and with opposite currents may cross."""
-    return tuple(x + (hdf if (isign >> ph) & 1 else -hdr) for ph, x in enumerate(c))
+    each other and with opposite currents may cross. ``carry``: the volt-second carry of each phase (snap_carry
+    of its previous update), added here too."""
+    return tuple(x + (hdf if (isign >> ph) & 1 else -hdr) + carry[ph] for ph, x in enumerate(c))
 
 
 def compare_values(sector: int, a16: int, m: int, period: int, dpwm: int = DPWM_OFF) -> tuple[int, int, int]:
@@ -348,11 +362,12 @@ def dq_dwell(theta: int, v_d: int, v_q: int) -> tuple[int, int, int]:
 def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int = 0, m: int = 0,
              theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0, vf_slope: int = 0,
              vf_mmax: int = 0, dpwm: int = DPWM_OFF, isign: int = 0, hdr: int = 0,
-             hdf: int = 0, om: int = 0) -> tuple[int, tuple[int, int, int], bool, bool]:
+             hdf: int = 0, om: int = 0,
+             carry: tuple[int, int, int] = (0, 0, 0)) -> tuple[int, tuple[int, int, int], bool, bool]:
     """The whole compute path for one update: reference (any mode) -> sector, dwell times -> hexagon clamp
     -> compare values (Table 4-3) -> zero-vector placement -> dead-time compensation (dtc_shift; hdr = hdf =
-    0: none). om = 1: the six-step overmodulation law in the clamp (om_gain, hex_clamp). Returns (sector,
-    (C_a, C_b, C_c), sat, cfg_err).
+    0: none) and the volt-second carry (``carry``, per phase). om = 1: the six-step overmodulation law in the
+    clamp (om_gain, hex_clamp). Returns (sector, (C_a, C_b, C_c), sat, cfg_err).
 
     acc_sector / acc_a16: the phase accumulator (freq and vf modes). An unknown mode gives the zero vector
     (T1 = T2 = 0, all phases 50 %) and cfg_err. The minimum-pulse rule (snap_min_pulse) comes after this."""
@@ -372,7 +387,7 @@ def modulate(mode: int, acc_sector: int, acc_a16: int, period: int, *, freq: int
         sector, t1, t2, err = 0, 0, 0, True
     t1, t2, sat = hex_clamp(t1, t2, g)
     c = dpwm_shift(dwell_compare(sector, t1, t2, period), period, dpwm)
-    return sector, dtc_shift(c, isign, hdr, hdf), sat, err
+    return sector, dtc_shift(c, isign, hdr, hdf, carry), sat, err
 
 
 def input_slots(mode: int, *, m: int = 0, theta: int = 0, v1: int = 0, v2: int = 0, vf_boost: int = 0,

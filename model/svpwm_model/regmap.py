@@ -106,6 +106,7 @@ REGISTERS: tuple[Register, ...] = (
         Field("upd", 12, 2, "rw", 0x0, port="ctrl_upd_o"),
         Field("dpwm", 16, 2, "rw", 0x0, port="ctrl_dpwm_o"),
         Field("om", 18, 1, "rw", 0x0, port="ctrl_om_o"),
+        Field("vsc_off", 19, 1, "rw", 0x0, port="ctrl_vsc_off_o"),
         Field("adc_trig", 20, 2, "rw", 0x0, port="ctrl_adc_trig_o"),
     ), compact=True),
     Register("FREQ", 0x10, (

@@ -45,6 +45,9 @@ def _vec(rng: random.Random, compact: bool) -> dict:
             hd = min(thr, 512)
             d.update(isign=rng.randint(0, 7), hdr=rng.choice([0, 1, hd, rng.randint(0, 512)]),
                      hdf=rng.choice([0, 1, hd, rng.randint(0, 512)]))
+        if rng.random() < 0.5:                                     # volt-second carry in (DtWidth 10: 12 bits)
+            b = rng.choice([(thr + 1) // 2 + 1, 2048])
+            d["carry"] = tuple(rng.randint(-b, min(b, 2047)) for _ in range(3))
     return d
 
 
@@ -86,7 +89,7 @@ def _directed(compact: bool):
                 for dpwm in range(4):
                     for hdr, hdf, thr in ((3, 5, 10), (24, 24, 48), (512, 1, 1023), (0, 512, 0)):
                         yield dict(period=1536, thr=thr, sector=sector, a16=0x3000, m=m, dpwm=dpwm,
-                                   isign=isign, hdr=hdr, hdf=hdf)
+                                   isign=isign, hdr=hdr, hdf=hdf, carry=(isign - 3, -(thr + 1) // 2, thr // 2))
 
 @pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
 def test_directed(compact, dsp):
@@ -97,6 +100,7 @@ def test_directed(compact, dsp):
     for k, v in enumerate(_directed(compact)):
         if k % every == 0:
             assert mach.run(v, junk=junk) == cp.expect(v, compact), v
+            assert mach.e_out == cp.expect_carry(v, compact)[4], v
             n += 1
     assert n >= 1000
 
@@ -108,6 +112,7 @@ def test_random(compact, dsp):
     for _ in range(3000 if dsp != compact else 1000):
         v = _vec(rng, compact)
         assert mach.run(v, junk=rng) == cp.expect(v, compact), v
+        assert mach.e_out == cp.expect_carry(v, compact)[4], v
 
 
 @pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)

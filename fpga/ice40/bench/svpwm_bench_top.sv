@@ -32,7 +32,7 @@ module svpwm_bench_top #(
 );
   localparam int B   = 1 + FreqWidth + 16 + CntWidth + DtWidth;   // first safety input bit
   localparam int R   = B + DtWidth + 7;                          // first input-mode bit
-  localparam int NIn = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2 + 5;
+  localparam int NIn = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2 + 6;
 
   logic [NIn-1:0] in_q;
   always_ff @(posedge clk_i) begin
@@ -68,6 +68,7 @@ module svpwm_bench_top #(
     .dtc_en_i       (in_q[R + 115]),
     .isign_i        (in_q[R + 116 +: 3]),
     .om_i           (in_q[R + 119]),
+    .vsc_en_i       (in_q[R + 120]),
     .period_i       (in_q[1 + FreqWidth + 16 +: CntWidth]),
     .dt_i           (in_q[1 + FreqWidth + 16 + CntWidth +: DtWidth]),
     .mp_i           (in_q[B +: DtWidth]),

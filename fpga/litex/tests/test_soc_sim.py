@@ -185,7 +185,8 @@ def inputs_of(v: dict[str, int]) -> core.Inputs:
 
     return core.Inputs(freq=f("FREQ"), m=f("M"), period=f("PERIOD"), dt=f("DT"), mp=f("MP"), mode=ctrl["mode"],
                        theta=f("THETA"), v1=f("V1"), v2=f("V2"), vf_boost=f("VF_BOOST"), vf_slope=f("VF_SLOPE"),
-                       vf_mmax=f("VF_MMAX"), dpwm=ctrl["dpwm"], upd=ctrl["upd"], presc=f("PRESC"))
+                       vf_mmax=f("VF_MMAX"), dpwm=ctrl["dpwm"], upd=ctrl["upd"], presc=f("PRESC"), om=ctrl["om"],
+                       vsc=1 - ctrl["vsc_off"], dtc=R.DTC.decode(v["DTC"])["en"], isign=R.DTC.decode(v["DTC"])["isign"])
 
 
 def en_writes(writes) -> list[int]:

@@ -8,7 +8,8 @@
 // Parameters:
 //   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
 //                continuous SVPWM, valley updates, no dead-time compensation; mode_i, theta_i, v1_i, v2_i,
-//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i and isign_i are ignored. The same calculator runs its FREQ-only program
+//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i, isign_i and vsc_en_i
+//                are ignored. The same calculator runs its FREQ-only program
 //                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
@@ -27,9 +28,11 @@
 // Dead-time compensation (dtc_en_i): each phase's compare value moves by half the dead time against the
 // volt-seconds the dead time costs at that phase's current sign (isign_i): C - ceil(dt / 2) for a positive
 // current, C + ceil(dt / 2) for a negative one, before the minimum-pulse rule (fixed.dtc_shift).
+// Volt-second carry (vsc_en_i): what the minimum-pulse rule drops or widens of a phase is added to its next
+// update (fixed.snap_carry), cleared while stopped or tripped and across a period change.
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
+// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_en_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
 // calculator's program + load 1: 250, compact 226), in the clock before count == SampleLead (down) /
 // P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
 // sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and

@@ -384,6 +384,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--upd", choices=list(UPD), help="compare load point (default: unchanged)")
     p.add_argument("--om", choices=list(OM), help="overmodulation beyond the hexagon: the angle-keeping clamp or the "
                    "six-step law (modes freq, vf, polar; default: unchanged)")
+    p = add("set-carry", "volt-second carry of the minimum-pulse rule (CTRL.vsc_off; on after reset)")
+    p.add_argument("state", choices=("on", "off"))
     p = add("set-dtc", "dead-time compensation from the phase current signs (DTC register)")
     p.add_argument("state", choices=("on", "off"))
     p.add_argument("--isign", help="current signs {c, b, a} as 3 bits, 1 = negative, e.g. 0b101 (default: unchanged)")
@@ -469,6 +471,9 @@ def run(args, board: Board) -> str:
             vals["om"] = OM[args.om]
         board.write_fields(R.CTRL, **vals)
         return ", ".join(f"CTRL.{k} = {v}" for k, v in vals.items())
+    if c == "set-carry":
+        board.write_fields(R.CTRL, vsc_off=int(args.state == "off"))
+        return f"CTRL.vsc_off = {int(args.state == 'off')}"
     if c == "set-dtc":
         vals = {"en": int(args.state == "on")}
         if args.isign is not None:

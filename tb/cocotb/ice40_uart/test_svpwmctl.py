@@ -183,6 +183,8 @@ def test_set_commands_write_exact_words():
     assert cmd(fb, "set-m", "0.9", "--fundamental") == "M = 0x7333 (m = 0.899994)"  # linear range: m itself
     assert cmd(fb, "set-dtc", "on", "--isign", "0b101") == "DTC.en = 1, DTC.isign = 5"
     assert fb.regs[R.DTC.addr] == R.DTC.encode(en=1, isign=5) == 0x51
+    assert cmd(fb, "set-carry", "off") == "CTRL.vsc_off = 1" and R.CTRL.decode(fb.regs[R.CTRL.addr])["vsc_off"]
+    cmd(fb, "set-carry", "on")
     cmd(fb, "set-dtc", "off")
     assert fb.regs[R.DTC.addr] == R.DTC.encode(en=0, isign=5)                   # the signs kept
 
@@ -313,7 +315,7 @@ def test_compact_board():
     assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
                                         "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP", "DTC"}
     refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"], ["set-mp", "0.25"],
-               ["set-mode", "freq", "--om", "sixstep"], ["set-dtc", "on"],
+               ["set-mode", "freq", "--om", "sixstep"], ["set-dtc", "on"], ["set-carry", "off"],
                ["write", "CTRL.mode", "0"], ["write", "CTRL.sync_en", "1"], ["write", "ctrl.adc_trig", "1"],
                ["write", "CTRL", "0x101"], ["write", "CTRL", "0x2"], ["write", "CTRL", "-1"]]
     refused += [["write", r.name, "0"] for r in absent] + [["write", f"0x{r.addr:x}", "1"] for r in absent]
@@ -346,7 +348,7 @@ def _cli(args, env=None, timeout=30):
 
 def test_cli_help_and_port_errors():
     cmds = ["read", "write", "dump", "info", "status", "start", "stop", "clear-fault", "set-freq", "set-m",
-            "set-period", "set-dt", "set-mp", "set-mode", "set-dtc"]
+            "set-period", "set-dt", "set-mp", "set-mode", "set-dtc", "set-carry"]
     for c in [[]] + [[c] for c in cmds]:
         r = _cli(c + ["--help"])
         assert r.returncode == 0 and "usage:" in r.stdout, (c, r.stderr)

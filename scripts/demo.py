@@ -14,10 +14,20 @@ Minas does not state the modulation index of either figure; we choose a V/f law 
 (Fig. 9, V/f: 5.1/50 of full, m = 1.0 full). m uses the project normalisation: m = 1 is the inscribed
 circle, line-to-line fundamental peak = m * Udc (Minas' ma = m).
 
+Dead-time compensation (issue 15 item 5(a), docs/demo.md): at both points three runs, dead time 0, 1 us
+(48 clocks) and 1 us with the core's compensation (dtc_en_i = 1), each with the motor model in the loop:
+it follows the RTL's gate edges as the run goes (the pole of a leg with both gates off set by its current's
+sign) and at every update's sample point its phase-current signs drive isign_i (the model's inputs get the
+same value, RTL == model asserted on every edge). Printed per run and in demo.json / metrics.json: line
+fundamental vs command, largest line-voltage line below f_sw/2 (dBc), WTHD, phase-current THD; and the
+target, compensated Fig. 9 low-order maximum within 6 dB of the dead-time-free run (stated, not checked).
+
 Outputs: build/demo/<point>.vcd (gate and pole waveforms, edges only, 1 ns units at the 48 MHz core clock),
-build/demo/<point>.json and build/demo/demo.json (all results). Exit code 0 only if every check passes:
-RTL == model on every edge, in-RTL safety checker clean, Table I in every period, leg safety, fundamental
-within 0.1 %, worst |C - C_ideal| <= 1 count.
+build/demo/<point>.json and build/demo/demo.json (all results), build/demo/report.md with fig_*.png and
+metrics.json (scripts/report.py). Exit code 0 only if every check passes: RTL == model on every edge,
+in-RTL safety checker clean, Table I in every period (not on the core's pole words with the compensation
+on: it may cross two switch commands within a dead time, fixed.dtc_shift), leg safety, fundamental within
+0.1 % (the Minas points), worst |C - C_ideal| <= 1 count.
 """
 from __future__ import annotations
 
@@ -62,6 +72,22 @@ SWEEP = [dict(name=f"sweep_50hz_m{int(round(m * 100)):03d}", f_hz=50.0, m=m, per
 SPEED = dict(name="speed_loop_vf", kind="speed_loop", t_end_s=2.0, period=P_VERMA, dt=DT_1US, f_hz=0.0, m=0.0,
              ctrl="slip", title="AVR495 Fig. 6-1: +700 -> -700 rpm, slip-regulated PI speed loop, V/f law computed by "
                                 "the core (mode 1), RTL in the loop")
+
+# Dead-time compensation (issue 15 item 5(a); README "Dead-time compensation"): at both Minas points three runs,
+# dead time 0 / 1 us / 1 us with dtc_en_i = 1, each with the motor model in the loop: it follows the RTL's gate
+# edges (the pole of a leg with both gates off set by its current's sign) and at every update's sample point its
+# three current signs go to isign_i (demo_runs.run_dtc_point). Speed held at the equivalent-circuit point for
+# DTC_T_LOAD (= report.T_LOAD) at the commanded voltage, the same in all three runs; the analysed window
+# (``revs`` revolutions, as the report's Fig. 9/10 spectra) follows ``warmup_revs`` revolutions of warm-up
+# from a steady-state start (slowest motor mode: 123 ms at 5.1 Hz, 10 ms at 50 Hz).
+DTC_T_LOAD = 2.5
+DTC_CASES = (("dt0", 0, 0, "dead time 0"), ("dt1us", DT_1US, 0, "dead time 1 us, no compensation"),
+             ("dt1us_dtc", DT_1US, 1, "dead time 1 us, compensation on"))
+DTC = [dict(name=f"dtc_{tag}_{case}", kind="dtc", group=tag, case=case, f_hz=f, m=m, period=P_VERMA, dt=dt,
+            dtc=en, t_load=DTC_T_LOAD, revs=revs, warmup_revs=wu, title=f"{fig}, {lab}")
+       for tag, f, m, revs, wu, fig in (("fig9", 5.1, 0.102, 1, 1, "Minas Fig. 9: 5.1 Hz, m = 0.102"),
+                                        ("fig10", 50.0, 0.9, 2, 4, "Minas Fig. 10: 50 Hz, m = 0.9"))
+       for case, dt, en, lab in DTC_CASES]
 
 
 class SetupError(RuntimeError):
@@ -129,8 +155,38 @@ def rel(path) -> str:
         return str(path)
 
 
+def print_dtc_run(r: dict) -> None:
+    pt = r["point"]
+    print()
+    print(f"== dead-time compensation, {pt['title']} (motor model in the loop)")
+    if r.get("missing"):
+        print("   no results: the simulation did not complete this run (see the log above)")
+        return
+    L, h = r["line"], r["harness"]
+    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    ti = r["table_i"]
+    print(f"   dt {pt['dt']} clocks, dtc_en_i {pt['dtc']}; {r['n_periods']} carrier periods ({r['cycles']:,} clocks, "
+          f"{r['window']['warmup_s'] * 1e3:.0f} ms warm-up + {r['window']['n_fund']} revolution(s) analysed) in "
+          f"{r['sim_wall_s']:.1f} s; isign_i changed {r['isign_changes']} times")
+    print(f"   line fundamental {L['fundamental']:.5f} Udc (command {pt['m']}: {100 * r['line_fundamental_rel_err']:+.2f} %), "
+          f"low-order max {L['low_order_max_dbc']:.1f} dBc at {L['low_order_max_at_hz']:.1f} Hz, "
+          f"WTHD {100 * L['wthd']:.4f} %, phase-current THD {100 * r['i_thd']:.2f} % (i1 {r['i1_rms']:.3f} A rms)")
+    print(f"   RTL == model (every edge, isign_i as driven): {_pf(r['rtl_equals_model'])}; gate safety: {_pf(safe)}; "
+          f"worst |C - C_ideal| {r['worst_abs_c_minus_ideal_counts']:.3f} counts: {_pf(r['worst_abs_c_minus_ideal_counts'] <= 1)}; "
+          f"Table I on the core's pole words: {ti['failures']} of {ti['periods']} periods differ"
+          + (f" (checked: {_pf(ti['failures'] == 0)})" if ti["checked"] else
+             " (not checked: the compensation may cross two commands within a dead time, fixed.dtc_shift"
+             + (f"; on the poles the motor sees: {r['table_i_resolved']['failures']} differ" if r.get("table_i_resolved") else "")
+             + ")"))
+    for f in r.get("failures") or []:
+        print(f"   FAILED: {f.splitlines()[0]}")
+
+
 def print_table(r: dict) -> None:
     pt = r["point"]
+    if pt.get("kind") == "dtc":
+        print_dtc_run(r)
+        return
     if pt.get("kind") == "speed_loop":
         print()
         print(f"== {pt['title']}")
@@ -201,17 +257,21 @@ def main(argv=None) -> int:
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sim", choices=("verilator", "icarus"), default="verilator",
                     help="simulator (default verilator; Icarus is ~20x slower: minutes for the 5.1 Hz point)")
-    ap.add_argument("--only", metavar="NAME", action="append", choices=[p["name"] for p in POINTS],
-                    help="run only this operating point (repeatable)")
+    ap.add_argument("--only", metavar="NAME", action="append", choices=[p["name"] for p in POINTS + DTC],
+                    help="run only this operating point or dead-time compensation run (repeatable)")
     ap.add_argument("--out", type=Path, default=DEMO_DIR, help=f"output directory (default {rel(DEMO_DIR)})")
     ap.add_argument("--no-sweep", action="store_true", help="skip the m sweep at 50 Hz")
     ap.add_argument("--no-speed", action="store_true", help="skip the closed speed loop (~2.5 min on Verilator)")
+    ap.add_argument("--no-dtc", action="store_true",
+                    help="skip the dead-time compensation runs (6 runs with the motor model in the loop, ~1.5 min)")
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)
-    points = [p for p in POINTS if not args.only or p["name"] in args.only]
+    points = [p for p in POINTS + DTC if p["name"] in args.only] if args.only else list(POINTS)
     if not args.only and not args.no_sweep:
         points += SWEEP
+    if not args.only and not args.no_dtc:
+        points += DTC
     if not args.only and not args.no_speed:
         points.append(dict(SPEED, t_end_s=args.speed_time))
     try:
@@ -220,9 +280,11 @@ def main(argv=None) -> int:
         print(f"demo: ERROR: {e}", file=sys.stderr)
         return 2
     t0 = time.perf_counter()
+    n_dtc = sum(p.get("kind") == "dtc" for p in points)
     print(f"==> demo: {len(points)} run(s) on {args.sim}: Minas' two points (1 and 2 revolutions), "
-          f"{len(SWEEP) if SWEEP[0] in points else 0} m-sweep points at 50 Hz, "
-          f"{'the speed loop (' + str(args.speed_time) + ' s motor time)' if any(p.get('kind') for p in points) else 'no speed loop'}",
+          f"{len(SWEEP) if SWEEP[0] in points else 0} m-sweep points at 50 Hz, {n_dtc} dead-time compensation "
+          f"run(s), "
+          f"{'the speed loop (' + str(args.speed_time) + ' s motor time)' if any(p.get('kind') == 'speed_loop' for p in points) else 'no speed loop'}",
           flush=True)
     results, err = run_points(args.sim, points, args.out.resolve())
     wall = time.perf_counter() - t0
@@ -235,8 +297,21 @@ def main(argv=None) -> int:
     summary = dict(command=" ".join([Path(sys.argv[0]).name] + (argv if argv is not None else sys.argv[1:])),
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), sim=args.sim, wall_s=wall, run_error=err,
                    results=results)
+    dtc_runs = [r for r in results if r["point"].get("kind") == "dtc" and not r.get("missing")]
+    if dtc_runs:                                   # the figures are in the runs' JSON: no report needed
+        import report as rep
+        sm = rep.dtc_summary(dtc_runs)      # target: report.DTC_TARGET_DB (6 dB)
+        summary["dead_time_compensation"] = sm
+        print()
+        print("dead-time compensation: line voltage v_ab seen by the motor (poles resolved by the current sign "
+              "during the dead time), phase current from the motor model in the loop")
+        for line in rep.dtc_table(sm):
+            print("  " + line)
+        print("target: " + sm["target"])
+        for line in rep.dtc_verdict(sm):
+            print("  " + line)
     out = args.out.resolve() / "demo.json"
-    out.write_text(json.dumps(summary, indent=2) + "\n")
+    out.write_text(json.dumps(summary, indent=2, default=float) + "\n")
     print()
     vcds = [rel(r["vcd"]) for r in results if r.get("vcd")]
     if vcds:
@@ -251,7 +326,8 @@ def main(argv=None) -> int:
         print("==> demo: spectra, motor, plots, report", flush=True)
         m = rep.build(args.out.resolve(), [p["name"] for p in POINTS if p["name"] in done],
                       [p["name"] for p in SWEEP if p["name"] in done],
-                      SPEED["name"] if SPEED["name"] in done else None)
+                      SPEED["name"] if SPEED["name"] in done else None,
+                      [p["name"] for p in DTC if p["name"] in done])
         report = args.out.resolve() / "report.md"
         print("\nfidelity (line voltage, dead time off):")
         for line in rep.fidelity_table(m):

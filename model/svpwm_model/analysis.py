@@ -173,14 +173,18 @@ def line_fundamental(pole_events, freq_word: int, t0: int, revolutions: int) -> 
     return abs(fourier(a, b, t0, t1, f))
 
 
-def duty_error(run) -> tuple[float, int]:
+def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0) -> tuple[float, int]:
     """Worst |C - C_ideal| in counts of the duty calculator over a run's modulated periods, and the
     period where it occurs (a core.Run, from the model or checked equal to the RTL).
 
     Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (run.theta[n]) and the
     clamped m it used (run.m[n]). The values the core applies are these after the minimum-pulse rule,
     which moves a value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that the
-    applied values are exactly the rule applied to the calculator's, within that bound, is asserted."""
+    applied values are exactly the rule applied to the calculator's, within that bound, is asserted.
+    With dead-time compensation (``hd`` = fixed.dtc_amounts, ``isign[n]`` the current signs the values of
+    period n were computed with) the calculator's values are shifted by -hd / +hd per phase
+    (fixed.dtc_shift) before the rule, and the ideal by the same integer: the error is that of the
+    unshifted values, the assertion covers the shift."""
     n = np.arange(1, len(run.cmp))
     if n.size == 0:
         raise ValueError("no modulated period in the run")
@@ -192,9 +196,12 @@ def duty_error(run) -> tuple[float, int]:
     raw = fixed.compare_values_np(sector, a16, m_w, p_i)
     for k, i in enumerate(n):
         thr = run.dt[i] + run.mp[i]
-        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in raw[k])
+        sh = raw[k]
+        if hd and isign is not None:
+            sh = fixed.dtc_shift(tuple(int(c) for c in raw[k]), int(isign[i]), hd, hd)
+        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in sh)
         assert snapped == tuple(run.cmp[i]), f"period {i}: applied {run.cmp[i]} != snap(raw) {snapped}"
-        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(run.cmp[i], raw[k])), f"period {i}"
+        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(run.cmp[i], sh)), f"period {i}"
     theta = th_int.astype(np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
     err = np.max(np.abs(raw - ideal_compare(theta, m_w / fixed.M_ONE, p_i.astype(np.float64))), axis=-1)
     k = int(np.argmax(err))

@@ -126,6 +126,35 @@ def slip_for_torque(mp: MotorParams, f_hz: float, v_phase_rms: float, torque: fl
     return 0.5 * (lo + hi)
 
 
+def dead_time_loss(dt: int, period: int, udc: float = UDC) -> float:
+    """Phase-voltage fundamental (V, peak) an uncompensated dead time removes, along the current vector.
+
+    With the pole set by the diodes during the dead time, each pole's mean over a carrier period is short
+    by sign(i_x) dt / (2 P) Udc; the three square waves sign(i_x) have the space-vector fundamental
+    4/pi along the current, so the loss is 4/pi dt / (2 P) Udc (the classical first-order result; zero
+    crossings inside a carrier period and the ripple are neglected)."""
+    return 4 / math.pi * dt / (2 * period) * udc
+
+
+def steady_state_with_loss(mp: MotorParams, f_hz: float, v_cmd: complex, slip: float,
+                           v_loss: float = 0.0, iters: int = 60):
+    """(psi_s, psi_r, v_eff): the sinusoidal steady state when the voltage vector is the command ``v_cmd``
+    minus ``v_loss`` along the current (dead_time_loss), solved by fixed-point iteration.  With v_loss = 0
+    it is steady_state_fluxes.  The start state of the dead-time runs (tb/cocotb/demo/demo_runs.py), so that
+    their warm-up only has to remove the harmonic part of the start error."""
+    D = mp.Ls * mp.Lr - mp.Lm * mp.Lm
+    v = v_cmd
+    for _ in range(iters if v_loss else 1):
+        ps, pr = steady_state_fluxes(mp, f_hz, v, slip)
+        i = (mp.Lr * ps - mp.Lm * pr) / D
+        v_new = v_cmd - v_loss * i / abs(i) if v_loss and abs(i) > 0 else v_cmd
+        if abs(v_new - v) < 1e-12 * max(1.0, abs(v_cmd)):
+            break
+        v = v_new
+    ps, pr = steady_state_fluxes(mp, f_hz, v, slip)
+    return ps, pr, v
+
+
 @dataclass
 class Trace:
     """Samples at every segment end (and sub-step): time (cycles), stator current vector, speed (rad/s)."""

@@ -243,3 +243,18 @@ def spectrum_of_samples(x: np.ndarray, n_fund: int) -> np.ndarray:
     X = np.fft.rfft(x) / len(x)
     X[1:] *= 2
     return X
+
+
+def current_spectrum(t, i, t0: float, T: float, n_fund: int, ngrid: int = 1 << 16) -> np.ndarray:
+    """c_j of a current sampled at irregular times ``t`` (e.g. motor.Trace: every segment end), linearly
+    interpolated onto ``ngrid`` points over [t0, t0 + T), T = n_fund fundamental periods."""
+    grid = t0 + np.arange(ngrid) / ngrid * T
+    return spectrum_of_samples(np.interp(grid, t, i), n_fund)
+
+
+def current_thd(c: np.ndarray, n_fund: int, h_max: int = 200) -> float:
+    """THD of a current spectrum (current_spectrum) up to order ``h_max`` (the report's "to 200th")."""
+    amp = np.abs(c[: h_max * n_fund + 1])
+    j = np.arange(amp.size)
+    other = (j >= 1) & (j != n_fund)
+    return math.sqrt(float(np.sum(amp[other] ** 2))) / amp[n_fund]

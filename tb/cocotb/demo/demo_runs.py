@@ -12,6 +12,10 @@ Environment (set by the scripts):
   periods), ``vcd`` (bool, default true), ``title`` (free text).
 * ``SVPWM_DEMO_OUT``: directory for ``<name>.json`` (results) and ``<name>.vcd`` (gate waveforms).
 
+A point with ``kind`` "speed_loop" is the closed speed loop (run_speed_loop); ``kind`` "dtc" a dead-time run
+with the motor model in the loop driving isign_i (run_dtc_point: ``dt``, ``dtc``, ``t_load``, ``revs``,
+``warmup_revs``); any other point the constant-input run below.
+
 Per point the core runs on tb_svpwm_core.sv with constant inputs; the test asserts RTL == model on every
 edge (CoreTB.compare) and the in-RTL safety checker, and measures: the line-voltage (a - b) fundamental
 from the RTL's pole edges against the command, the worst per-period |C - C_ideal| (ideal SVPWM at the exact
@@ -42,10 +46,11 @@ import cocotb.utils
 import numpy as np
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
+from clocks import clock_cycles
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CoreTB, dead_time_at
+from svpwm_tb import CLK_NS, CoreTB, dead_time_at
 
 F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
@@ -316,10 +321,199 @@ async def run_speed_loop(dut, pt: dict) -> None:
     assert not fails, "\n".join(fails)
 
 
+def dtc_start(pt: dict, fw: int, lead: int) -> dict:
+    """Operating point and start state of a dead-time run (run_dtc_point): the speed of the
+    equivalent-circuit steady state for ``t_load`` at the commanded voltage (the same slip in all three runs
+    of a point, as scripts/report.py's motor_point), and the fluxes of the sinusoidal steady state at the
+    first valley t_1, with the dead time's fundamental loss (motor.dead_time_loss) when the compensation
+    is off.  The voltage vector at cycle c is at the accumulator angle of c - (P + lead + 1): a period's
+    pulses are centred on its peak, P clocks after the valley its values were sampled ``lead`` clocks
+    before."""
+    from svpwm_model import motor as M
+    mp = M.MotorParams()
+    P, dt = int(pt["period"]), int(pt["dt"])
+    f1 = fw / (6 * (1 << fixed.PHASE_WIDTH))                  # cycles^-1, signed
+    f_hz = f1 * F_CLK
+    m = pt["m"]
+    slip = M.slip_for_torque(mp, abs(f_hz), m * M.UDC / math.sqrt(6), pt["t_load"])
+    t1 = fixed.START_DELAY + 2 * P
+    ang = 2 * math.pi * f1 * (t1 - fixed.START_DELAY - (P + lead + 1))
+    v_cmd = m * M.UDC / math.sqrt(3) * complex(math.cos(ang), math.sin(ang))
+    loss = 0.0 if pt.get("dtc") else M.dead_time_loss(dt, P)
+    # the steady state for the positive sequence; a negative frequency is its mirror image
+    ps, pr, v_eff = M.steady_state_with_loss(mp, abs(f_hz), v_cmd if f1 > 0 else v_cmd.conjugate(), slip, loss)
+    if f1 < 0:
+        ps, pr = ps.conjugate(), pr.conjugate()
+    wm = math.copysign((1 - slip) * 2 * math.pi * abs(f_hz) / mp.p, f1)
+    return dict(mp=mp, slip=slip, t_start=t1, ps=complex(ps), pr=complex(pr), wm=wm,
+                speed_rpm=wm * 60 / (2 * math.pi), v_loss_v=loss, v_eff_over_cmd=abs(v_eff) / abs(v_cmd))
+
+
+def isign_of(currents) -> int:
+    """isign_i word {c, b, a} of the phase currents: bit k = 1 for a negative current (into the leg)."""
+    return sum(1 << k for k, i in enumerate(currents) if i < 0)
+
+
+async def run_dtc_point(dut, pt: dict) -> None:
+    """Dead-time run with the motor model in the loop (issue 15 item 5(a)).
+
+    The core runs at (f_hz, m, P) with dead time ``dt`` and compensation ``dtc`` (dtc_en_i); the motor
+    (svpwm_model.motor.InverterMotor, gates=True: the pole of a leg whose gates are both off is set by its
+    current's sign, fixed speed) follows the RTL's gate edges as the run goes: at every update's sample point
+    (upd_i = valley: once per carrier period, at S - 1 = t_{n+1} - lead - 1) the test wakes at the falling
+    clock edge of S - 2, advances the motor over the gate edges the RTL has produced so far to the start of
+    S - 1, and drives the three current signs onto isign_i, where the core samples them at the end of S - 1.
+    The same value goes into that update's model inputs (Inputs.isign), so the golden model, replaying the
+    recorded inputs afterwards, must equal the RTL on every edge (asserted; isign_i is driven in the runs
+    without compensation too, where the core ignores it).  The run lasts ``warmup_revs`` revolutions
+    (the motor's start transient; see dtc_start) plus the analysed window of ``revs`` revolutions."""
+    from dataclasses import replace
+
+    from svpwm_model import motor as M
+    from svpwm_model import spectrum as S
+    from svpwm_tb import parse_record
+
+    t_test = time.perf_counter()
+    out_dir = Path(os.environ.get("SVPWM_DEMO_OUT", "."))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    d = dut
+    P, dt, dtc = int(pt["period"]), int(pt["dt"]), int(bool(pt.get("dtc")))
+    fw, mw = fixed.freq_word(pt["f_hz"]), fixed.m_word(pt["m"])
+    lead = fixed.SAMPLE_LEAD
+    f1 = fw / (6 * (1 << fixed.PHASE_WIDTH))
+    n_fund = int(pt.get("revs", 1))
+    T = n_fund / abs(f1)
+    k0 = 1 + int(math.ceil(pt.get("warmup_revs", 1) / abs(f1) / (2 * P)))   # first valley of the window
+    t0 = fixed.START_DELAY + 2 * P * k0 + 1
+    n_per = int(math.ceil((t0 + T - fixed.START_DELAY) / (2 * P))) + 2
+    st = dtc_start(pt, fw, lead)
+    mot = M.InverterMotor(st["mp"], gates=True, fixed_speed=True, h_max=10e-6, trace=True)
+    mot.set_state(st["ps"], st["pr"], st["wm"])
+    mot.t = st["t_start"]
+    base = Inputs(freq=fw, m=mw, period=P, dt=dt, dtc=dtc)
+    tb = CoreTB(dut)
+    await tb.reset(base)
+    tb.model.idle(tb.idle_cycles)
+    tb.set_inputs(base)
+    await clock_cycles(d.clk, 2)
+    d.en_i.value = 1
+    tb.t0 = cocotb.utils.get_sim_time("ns")
+    await FallingEdge(d.clk)
+    lines: list = []
+    inputs: list[Inputs] = []
+    t_sim0, cpu0 = time.perf_counter(), time.process_time()
+    t_val = fixed.START_DELAY
+    for n in range(n_per):
+        c = t_val + 2 * P - lead - 2                  # sample clock S - 1 = c + 1 of the update at t_{n+1}
+        await tb._to_cycle(c)
+        await FallingEdge(d.clk)
+        new = tb._rec_lines()
+        lines += new
+        mot.push([(cy, int(r[2], 16) & 0x3F) for r in new if r[0] == "M"
+                  for cy in (int(round(int(r[1]) - tb.t0)) // CLK_NS,) if cy >= 0])
+        if c + 1 > mot.t:
+            mot.advance_to(c + 1)
+        u = replace(base, isign=isign_of(mot.phase_currents()))
+        inputs.append(u)
+        if u != base or n == 0:
+            d.isign_i.value = u.isign
+        t_val += 2 * P
+    await tb._to_cycle(t_val)
+    await FallingEdge(d.clk)
+    t_sim, cpu = time.perf_counter() - t_sim0, time.process_time() - cpu0
+    lines += tb._rec_lines()
+    tb.rec.close()
+    exp = tb.model.run(base, inputs, n_per)
+    rtl = parse_record(lines, tb.t0, tb.cmp_width, n_per, exp.end)
+    mot.push([(cy, w) for cy, w in rtl.gate_edges if cy >= mot.t])   # the edges after the last wake-up
+    mot.advance_to(exp.end)
+    fails: list[str] = []
+    res: dict = dict(point=pt, sim=getattr(cocotb, "SIM_NAME", "?"), freq_word=fw, m_word=mw,
+                     f_out_hz_exact=f1 * F_CLK, f_sw_hz=F_CLK / (2 * P), n_periods=n_per, cycles=exp.end,
+                     sim_wall_s=t_sim, sim_cpu_s=cpu, cycles_per_s=exp.end / t_sim, sample_lead=lead,
+                     isign_at="sample clock S - 1 of every update (once per carrier period, upd_i = valley)",
+                     motor=dict(slip=st["slip"], speed_rpm=st["speed_rpm"], t_load_nm=pt["t_load"],
+                                start_cycle=st["t_start"], dead_time_loss_v=st["v_loss_v"],
+                                start_v_eff_over_cmd=st["v_eff_over_cmd"]),
+                     window=dict(t0=t0, T=T, n_fund=n_fund, warmup_periods=k0 - 1,
+                                 warmup_s=(t0 - 1 - fixed.START_DELAY) / F_CLK),
+                     isign_changes=sum(1 for a, b in zip(inputs, inputs[1:]) if a.isign != b.isign),
+                     gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges), failures=fails)
+    try:
+        tb.compare(rtl, exp)
+        res["rtl_equals_model"] = True
+    except AssertionError as e:
+        res["rtl_equals_model"] = False
+        fails.append(f"RTL != model: {e}")
+    h = dict(shoot_through_clocks=int(d.shoot_through_count.value),
+             dead_time_violations=int(d.dead_time_violations.value),
+             short_pulses=int(d.short_pulse_count.value))
+    res["harness"] = h
+    try:
+        tb.check_harness()
+    except AssertionError as e:
+        fails.append(str(e))
+    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
+    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
+                       short_pulse=len(legs.short_pulse))
+    if not legs.ok:
+        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
+    # Table I on the core's pole words: with the compensation two phases within a dead time of each other
+    # and with opposite currents may cross (fixed.dtc_shift), so it is reported, and checked only without
+    seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
+    res["table_i"] = dict(periods=seq.periods, with_skipped_states=seq.with_skips, failures=len(seq.failures),
+                          first_failures=seq.failures[:5], checked=not dtc)
+    if not dtc and not seq.ok:
+        fails.append("Table I: " + ("; ".join(seq.failures[:3]) or "no period checked"))
+    if dtc:          # the poles the motor sees (resolved by the current sign): reported
+        sr = check_table_i(mot.effective, rtl.valley, [None] + rtl.sector)
+        res["table_i_resolved"] = dict(periods=sr.periods, with_skipped_states=sr.with_skips,
+                                       failures=len(sr.failures), first_failures=sr.failures[:5])
+    hd = fixed.dtc_amounts(dt, dt, bool(dtc))[0]
+    worst, at = duty_error(exp, isign=[None] + [u.isign for u in inputs], hd=hd)
+    res["worst_abs_c_minus_ideal_counts"] = worst
+    res["worst_at_period"] = at
+    if worst > 1.0:
+        fails.append(f"worst |C - C_ideal (+- hd)| = {worst:.3f} counts > 1")
+
+    # ---- voltage seen by the motor (poles resolved by the current sign) and phase current ------------
+    f_sw = F_CLK / (2 * P)
+    jmax = int(3 * f_sw * T / F_CLK)
+    eff = S.spectra_from_edges(mot.effective, t0, T, n_fund, jmax, F_CLK)
+    core = S.spectra_from_edges(rtl.pole_edges, t0, T, n_fund, jmax, F_CLK)
+    fig_line = S.figures(eff.line[0], n_fund, T, F_CLK, f_sw).as_dict()
+    tt, ii, _ = mot.trace.arrays()
+    ci = S.current_spectrum(tt, ii.real, t0, T, n_fund)
+    res.update(line=fig_line, pole=S.figures(eff.pole[0], n_fund, T, F_CLK, f_sw).as_dict(),
+               core_pole_word_line=S.figures(core.line[0], n_fund, T, F_CLK, f_sw).as_dict(),
+               line_fundamental_commanded=pt["m"],
+               line_fundamental_rel_err=fig_line["fundamental"] / pt["m"] - 1,
+               i1_rms=float(abs(ci[n_fund]) / math.sqrt(2)), i_thd=S.current_thd(ci, n_fund))
+    # ---- edges, resolved poles, current trace for the report's plots -----------------------------------
+    npz = out_dir / f"{pt['name']}.npz"
+    keep = tt >= t0 - 2 * P
+    np.savez_compressed(npz, effective=np.asarray(mot.effective, dtype=np.int64).reshape(-1, 2),
+                        pole_edges=np.asarray(rtl.pole_edges, dtype=np.int64).reshape(-1, 2),
+                        valley=np.asarray(rtl.valley, dtype=np.int64),
+                        isign=np.asarray([u.isign for u in inputs], dtype=np.int64),
+                        trace_t=tt[keep], trace_i=ii[keep], t0=t0, T=T, n_fund=n_fund, freq_word=fw, dt=dt,
+                        dtc=dtc, period=P)
+    res["npz"] = str(npz)
+    res["test_wall_s"] = time.perf_counter() - t_test
+    res["ok"] = not fails
+    (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2, default=float) + "\n")
+    dut._log.info("%s: %d periods in %.1f s, line low-order max %.1f dBc, WTHD %.4f %%, i THD %.2f %%, "
+                  "RTL == model: %s", pt["name"], n_per, t_sim, fig_line["low_order_max_dbc"],
+                  100 * fig_line["wthd"], 100 * res["i_thd"], res["rtl_equals_model"])
+    assert not fails, "\n".join(fails)
+
+
 def _make_test(pt: dict):
     async def point_test(dut):
         if pt.get("kind") == "speed_loop":
             await run_speed_loop(dut, pt)
+        elif pt.get("kind") == "dtc":
+            await run_dtc_point(dut, pt)
         else:
             await run_point(dut, pt)
 

@@ -27,9 +27,10 @@
 //             bits.
 // Latency: svpwm_pkg::core_latency(Compact) clocks from start_i to done_o (Compact = 0:
 // svpwm_pkg::calc_latency(0, Dsp)).
-// Volt-second carry: carry_i is added to each phase's command before the minimum-pulse rule; carry_o is
-// what the rule dropped or widened, limited to +-ceil(thr / 2) (fixed.snap_carry), for the core to give back
-// in the next update.
+// Volt-second carry: carry_i (with carry_en_i) is added to each phase's command before the minimum-pulse
+// rule; carry_o is what the rule dropped or widened, limited to +-ceil(thr / 2) (fixed.snap_carry), for the
+// core to give back in the next update; carry_o is valid from the clock after done_o until the next
+// computation's out steps.
 // Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
 // until done_o (the core's sampled registers do), except fabs_i, period_i, thr_i, hdr_i and hdf_i, which may
 // arrive one
@@ -67,6 +68,7 @@ module svpwm_calc #(
   input  logic [DtWidth-1:0]    hdr_i,        // compensation: C - hdr_i for a positive current (0: off)
   input  logic [DtWidth-1:0]    hdf_i,        // compensation: C + hdf_i for a negative current (0: off)
   input  logic [3*DtWidth+5:0]  carry_i,      // {c, b, a} volt-second carry in, DtWidth + 2 bits signed each
+  input  logic                  carry_en_i,   // 1: add carry_i (0: as if it were 0)
   output logic                  busy_o,       // a computation is running
   output logic                  done_o,       // one-cycle pulse: the outputs below are new
   output logic [2:0]            sector_o,     // sector of the result
@@ -99,7 +101,7 @@ module svpwm_calc #(
 
     logic unused_full;
     assign unused_full = ^{mode_i, theta_i, v1_i, v2_i, vf_boost_i, vf_slope_i, vf_mmax_i, dpwm_i, fabs_i, Dsp,
-                           isign_i, hdr_i, hdf_i, om_i, carry_i};
+                           isign_i, hdr_i, hdf_i, om_i, carry_i, carry_en_i};
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
@@ -375,20 +377,22 @@ module svpwm_calc #(
     // the input the word selects (the operand of the step after next), registered sign-extended in in_q
     // per phase: the compensation by its current sign plus its carry, registered (the inputs hold from the
     // start; the program reads these late), then per class the phase's value (dtc_in)
-    logic [15:0] in_sel, hdf16, mhdr16;
-    logic [15:0] dpe_d [3];
-    logic [15:0] dpe_q [3];
-    logic [15:0] dtc_in [3];
-    logic        in_signed;
-    assign hdf16  = 16'(hdf_i);
-    assign mhdr16 = 16'(0) - 16'(hdr_i);
+    // (|hd| <= 2^(DtWidth-1), |carry| <= 2^DtWidth: DtWidth + 2 bits signed)
+    logic [15:0]   in_sel;
+    logic [EW-1:0] hdf_w, mhdr_w;
+    logic [EW-1:0] dpe_d [3];
+    logic [EW-1:0] dpe_q [3];
+    logic [EW-1:0] dtc_in [3];
+    logic          in_signed;
+    assign hdf_w  = EW'(hdf_i);
+    assign mhdr_w = EW'(0) - EW'(hdr_i);
     for (genvar ph = 0; ph < 3; ph++) begin : gen_dpe
-      assign dpe_d[ph] = (isign_i[ph] ? hdf16 : mhdr16) + 16'($signed(carry_i[ph*EW +: EW]));
+      assign dpe_d[ph] = (isign_i[ph] ? hdf_w : mhdr_w) + (carry_en_i ? carry_i[ph*EW +: EW] : EW'(0));
       always_ff @(posedge clk_i) dpe_q[ph] <= dpe_d[ph];
     end
     for (genvar j = 0; j < 3; j++) begin : gen_dtc_in
-      assign dtc_in[j] = ({16{is_cls[j][0]}} & dpe_q[0]) | ({16{is_cls[j][1]}} & dpe_q[1])
-                       | ({16{is_cls[j][2]}} & dpe_q[2]);
+      assign dtc_in[j] = ({EW{is_cls[j][0]}} & dpe_q[0]) | ({EW{is_cls[j][1]}} & dpe_q[1])
+                       | ({EW{is_cls[j][2]}} & dpe_q[2]);
     end
     logic [16:0] in_d, in_q;
     always_comb begin
@@ -406,9 +410,9 @@ module svpwm_calc #(
         4'(svpwm_pkg::InPeriod): in_sel = 16'(period_i);
         4'(svpwm_pkg::InThr):    in_sel = 16'(thr_i);
         // the dead-time compensation of the class's phase: + hdf for a negative current, else - hdr
-        4'(svpwm_pkg::InDhi):    begin in_sel = dtc_in[0]; in_signed = 1'b1; end
-        4'(svpwm_pkg::InDlo):    begin in_sel = dtc_in[1]; in_signed = 1'b1; end
-        4'(svpwm_pkg::InDmid):   begin in_sel = dtc_in[2]; in_signed = 1'b1; end
+        4'(svpwm_pkg::InDhi):    begin in_sel = 16'($signed(dtc_in[0])); in_signed = 1'b1; end
+        4'(svpwm_pkg::InDlo):    begin in_sel = 16'($signed(dtc_in[1])); in_signed = 1'b1; end
+        4'(svpwm_pkg::InDmid):   begin in_sel = 16'($signed(dtc_in[2])); in_signed = 1'b1; end
         4'(svpwm_pkg::InMv):     in_sel = (om_i && !is_xy) ? 16'(svpwm_pkg::MVertex) : 16'hFFFF;
         default:      in_sel = 16'd0;
       endcase
@@ -493,15 +497,19 @@ module svpwm_calc #(
 
     // the volt-second carry (fixed.snap_carry): the command the minimum-pulse rule snaps is the value
     // written to its RAM word (RSnap); the carry is command - snapped (the ACC of the out step), limited to
-    // +-hthr = +-ceil(thr / 2) (hthr registered: thr_i holds)
-    logic [W-1:0]  cmd_d, cmd_q, cdiff;
+    // +-hthr = +-ceil(thr / 2), in two registered stages (the difference, then the limit: carry_o is valid
+    // one clock after done_o). The command lies in [-3 2^(DtWidth-1), P + 3 2^(DtWidth-1)]: CntWidth + 2
+    // bits signed (DtWidth + 2 <= CntWidth)
+    localparam int CW = CntWidth + 2;
+    logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q;
     logic [EW-1:0] ecar, hthr_q;
     logic          c_hi, c_lo;
-    assign cmd_d = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q : cmd_q;
-    assign cdiff = cmd_q - acc_q;
-    assign c_hi  = $signed(cdiff) > $signed(W'(hthr_q));
-    assign c_lo  = $signed(cdiff) < -$signed(W'(hthr_q));
-    assign ecar  = c_hi ? hthr_q : c_lo ? EW'(0) - hthr_q : cdiff[EW-1:0];
+    logic [2:0]    ldp_d, ldp_q;              // the phases of the out step of the clock before
+    assign cmd_d = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
+    assign cd_d  = cmd_q - acc_q[CW-1:0];
+    assign c_hi  = $signed(cd_q) > $signed(CW'(hthr_q));
+    assign c_lo  = $signed(cd_q) < -$signed(CW'(hthr_q));
+    assign ecar  = c_hi ? hthr_q : c_lo ? EW'(0) - hthr_q : cd_q[EW-1:0];
     always_ff @(posedge clk_i) hthr_q <= EW'(({1'b0, thr_i} + 1'b1) >> 1);
 
     // out: the phases whose Table 4-3 code is of this class take ACC (0: the highest, 1: the lowest, 2 / 3:
@@ -514,7 +522,8 @@ module svpwm_calc #(
                  : (sel[2*ph +: 2] == 2'd1) ? 2'(svpwm_pkg::OutLo) : 2'(svpwm_pkg::OutMid);
       assign ld  = out_op != 2'(svpwm_pkg::OutNone) && out_op == cls;
       assign cmp_d[ph*CntWidth +: CntWidth] = ld ? acc_q[CntWidth-1:0] : cmp_q[ph*CntWidth +: CntWidth];
-      assign car_d[ph*EW +: EW] = ld ? ecar : car_q[ph*EW +: EW];
+      assign ldp_d[ph] = ld;
+      assign car_d[ph*EW +: EW] = ldp_q[ph] ? ecar : car_q[ph*EW +: EW];
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -559,6 +568,8 @@ module svpwm_calc #(
         cmp_q   <= '0;
         car_q   <= '0;
         cmd_q   <= '0;
+        cd_q    <= '0;
+        ldp_q   <= '0;
         done_q  <= 1'b0;
       end else begin
         pc_q    <= pc_d;
@@ -601,6 +612,8 @@ module svpwm_calc #(
         cmp_q   <= cmp_d;
         car_q   <= car_d;
         cmd_q   <= cmd_d;
+        cd_q    <= cd_d;
+        ldp_q   <= ldp_d;
         done_q  <= done && !abort_i;
       end
     end
@@ -615,7 +628,7 @@ module svpwm_calc #(
                                                         // registered decode, which lags mode_i by a clock)
 
     logic unused;
-    assign unused = ^{p_sh, rsel, cdiff[W-1:EW]};          // (rsel: the ROM address decodes the misc code itself)
+    assign unused = ^{p_sh, rsel, acc_q[W-1:CW]};          // (rsel: the ROM address decodes the misc code itself)
   end
 
 endmodule

@@ -418,9 +418,10 @@ module svpwm_core #(
   // last update (car_q, for the period car_per_q), given to the next computation for the same period; cleared
   // while stopped or tripped, and not given across a period change
   localparam int EW = DtWidth + 2;
-  logic [3*EW-1:0]       car_d, car_q, calc_car_d, calc_car_q, snap_car;
+  logic [3*EW-1:0]       car_d, car_q, snap_car;
   logic                  trip_sync, brake;     // (the trip state: svpwm_gate_out, below)
   logic [CntWidth-1:0]   car_per_d, car_per_q;
+  logic                  car_ok_d, car_ok_q, take_q;
 
   // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the dead time the
   // update is computed for, 0 when off
@@ -433,13 +434,13 @@ module svpwm_core #(
     calc_thr_d    = calc_thr_q;
     calc_hdr_d    = calc_hdr_q;
     calc_hdf_d    = calc_hdf_q;
-    calc_car_d    = calc_car_q;
+    car_ok_d      = car_ok_q;
     if (start_q) begin
       calc_period_d = ev_valley_q ? period_next_q : period_act;
       calc_thr_d    = ev_valley_q ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : {1'b0, dt_q} + {1'b0, mp_q};
       calc_hdr_d    = dtc_q ? DtWidth'(({1'b0, hd_dt} + 1'b1) >> 1) : '0;
       calc_hdf_d    = calc_hdr_d;
-      calc_car_d    = (vsc_q && calc_period_d == car_per_q) ? car_q : '0;
+      car_ok_d      = vsc_q && calc_period_d == car_per_q;
     end
   end
 
@@ -477,7 +478,8 @@ module svpwm_core #(
     .isign_i    (isign_q),
     .hdr_i      (calc_hdr_q),
     .hdf_i      (calc_hdf_q),
-    .carry_i    (calc_car_q),
+    .carry_i    (car_q),                   // (car_q changes only after the computation's done_o)
+    .carry_en_i (car_ok_q),
     .busy_o     (duty_busy),
     .done_o     (snap_done),
     .sector_o   (duty_sector),
@@ -543,6 +545,8 @@ module svpwm_core #(
         valid_d   = 1'b1;
         update_d  = 1'b1;
         pending_d = 1'b0;
+      end
+      if (take_q) begin                    // the calculator's carry_o: valid the clock after done_o
         car_d     = vsc_q ? snap_car : '0;
         car_per_d = calc_period_q;
       end
@@ -568,7 +572,8 @@ module svpwm_core #(
       calc_thr_q     <= '0;
       calc_hdr_q     <= '0;
       calc_hdf_q     <= '0;
-      calc_car_q     <= '0;
+      car_ok_q       <= 1'b0;
+      take_q         <= 1'b0;
       car_q          <= '0;
       car_per_q      <= CntWidth'(MinPeriod);
       freq_q         <= '0;
@@ -602,7 +607,8 @@ module svpwm_core #(
       calc_thr_q     <= calc_thr_d;
       calc_hdr_q     <= calc_hdr_d;
       calc_hdf_q     <= calc_hdf_d;
-      calc_car_q     <= calc_car_d;
+      car_ok_q       <= car_ok_d;
+      take_q         <= take;
       car_q          <= car_d;
       car_per_q      <= car_per_d;
       freq_q         <= freq_d;

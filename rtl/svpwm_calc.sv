@@ -29,7 +29,7 @@
 // svpwm_pkg::calc_latency(0, Dsp)).
 // Volt-second carry: carry_i (with carry_en_i) is added to each phase's command before the minimum-pulse
 // rule; carry_o is what the rule dropped or widened, limited to +-ceil(thr / 2) (fixed.snap_carry), for the
-// core to give back in the next update; carry_o is valid from the clock after done_o until the next
+// core to give back in the next update; carry_o is valid from the second clock after done_o until the next
 // computation's out steps.
 // Restrictions: sector_i and angle_i are read at start_i only; every other input must hold from start_i
 // until done_o (the core's sampled registers do), except fabs_i, period_i, thr_i, hdr_i and hdf_i, which may
@@ -497,20 +497,26 @@ module svpwm_calc #(
 
     // the volt-second carry (fixed.snap_carry): the command the minimum-pulse rule snaps is the value
     // written to its RAM word (RSnap); the carry is command - snapped (the ACC of the out step), limited to
-    // +-hthr = +-ceil(thr / 2), in two registered stages (the difference, then the limit: carry_o is valid
-    // one clock after done_o). The command lies in [-3 2^(DtWidth-1), P + 3 2^(DtWidth-1)]: CntWidth + 2
-    // bits signed (DtWidth + 2 <= CntWidth)
+    // +-hthr = +-ceil(thr / 2), in three registered stages (the difference, the two limit compares, the
+    // choice: carry_o is valid two clocks after done_o). The command lies in [-3 2^(DtWidth-1),
+    // P + 3 2^(DtWidth-1)]: CntWidth + 2 bits signed (DtWidth + 2 <= CntWidth)
     localparam int CW = CntWidth + 2;
     logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q;
-    logic [EW-1:0] ecar, hthr_q;
-    logic          c_hi, c_lo;
-    logic [2:0]    ldp_d, ldp_q;              // the phases of the out step of the clock before
+    logic [EW-1:0] ecar, hthr_q, mhthr_q, cd2_q;
+    logic          c_hi_q, c_lo_q;
+    logic [2:0]    ldp_d, ldp_q, ldp2_q;      // the phases of the out step one / two clocks before
     assign cmd_d = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
     assign cd_d  = cmd_q - acc_q[CW-1:0];
-    assign c_hi  = $signed(cd_q) > $signed(CW'(hthr_q));
-    assign c_lo  = $signed(cd_q) < -$signed(CW'(hthr_q));
-    assign ecar  = c_hi ? hthr_q : c_lo ? EW'(0) - hthr_q : cd_q[EW-1:0];
-    always_ff @(posedge clk_i) hthr_q <= EW'(({1'b0, thr_i} + 1'b1) >> 1);
+    assign ecar  = c_hi_q ? hthr_q : c_lo_q ? mhthr_q : cd2_q;
+    // (no reset: hthr from thr_i, which holds from the start; the stages follow the out steps)
+    always_ff @(posedge clk_i) begin
+      hthr_q  <= EW'(({1'b0, thr_i} + 1'b1) >> 1);
+      mhthr_q <= EW'(0) - hthr_q;
+      c_hi_q  <= $signed(cd_q) > $signed(CW'(hthr_q));
+      c_lo_q  <= $signed(cd_q) < $signed({{(CW-EW){mhthr_q[EW-1]}}, mhthr_q});
+      cd2_q   <= cd_q[EW-1:0];
+      ldp2_q  <= ldp_q;
+    end
 
     // out: the phases whose Table 4-3 code is of this class take ACC (0: the highest, 1: the lowest, 2 / 3:
     // the middle compare value) and their carry
@@ -523,7 +529,7 @@ module svpwm_calc #(
       assign ld  = out_op != 2'(svpwm_pkg::OutNone) && out_op == cls;
       assign cmp_d[ph*CntWidth +: CntWidth] = ld ? acc_q[CntWidth-1:0] : cmp_q[ph*CntWidth +: CntWidth];
       assign ldp_d[ph] = ld;
-      assign car_d[ph*EW +: EW] = ldp_q[ph] ? ecar : car_q[ph*EW +: EW];
+      assign car_d[ph*EW +: EW] = ldp2_q[ph] ? ecar : car_q[ph*EW +: EW];
     end
 
     always_ff @(posedge clk_i or negedge rst_ni) begin

@@ -421,7 +421,8 @@ module svpwm_core #(
   logic [3*EW-1:0]       car_d, car_q, snap_car;
   logic                  trip_sync, brake;     // (the trip state: svpwm_gate_out, below)
   logic [CntWidth-1:0]   car_per_d, car_per_q;
-  logic                  car_ok_d, car_ok_q, take_q;
+  logic                  car_ok_d, car_ok_q;
+  logic [1:0]            take_q;               // take, one and two clocks before
 
   // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the dead time the
   // update is computed for, 0 when off
@@ -546,7 +547,7 @@ module svpwm_core #(
         update_d  = 1'b1;
         pending_d = 1'b0;
       end
-      if (take_q) begin                    // the calculator's carry_o: valid the clock after done_o
+      if (take_q[1]) begin                 // the calculator's carry_o: valid two clocks after done_o
         car_d     = vsc_q ? snap_car : '0;
         car_per_d = calc_period_q;
       end
@@ -573,7 +574,7 @@ module svpwm_core #(
       calc_hdr_q     <= '0;
       calc_hdf_q     <= '0;
       car_ok_q       <= 1'b0;
-      take_q         <= 1'b0;
+      take_q         <= '0;
       car_q          <= '0;
       car_per_q      <= CntWidth'(MinPeriod);
       freq_q         <= '0;
@@ -608,7 +609,7 @@ module svpwm_core #(
       calc_hdr_q     <= calc_hdr_d;
       calc_hdf_q     <= calc_hdf_d;
       car_ok_q       <= car_ok_d;
-      take_q         <= take;
+      take_q         <= {take_q[0], take};
       car_q          <= car_d;
       car_per_q      <= car_per_d;
       freq_q         <= freq_d;

@@ -51,6 +51,9 @@ module tb_svpwm_calc #(
   input  logic [1:0]            dpwm_i,
   input  logic [CntWidth-1:0]   period_i,
   input  logic [DtWidth:0]      thr_i,
+  input  logic [2:0]            isign_i,
+  input  logic [DtWidth-1:0]    hdr_i,
+  input  logic [DtWidth-1:0]    hdf_i,
   input  logic                  play_i,       // rising: run the player (stim_file_i, stim_n_i)
   input  logic [8*64-1:0]       stim_file_i,  // file name (ASCII, right aligned, <= 64 characters)
   input  logic [31:0]           stim_n_i,     // records in the file
@@ -70,13 +73,13 @@ module tb_svpwm_calc #(
   output logic [3*CntWidth+6:0] fail_got_o    // player: {busy, done, sector, cmp, sat, err} then
 );
 
-  localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + DtWidth + 1;
+  localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + DtWidth + 1 + 3 + 2 * DtWidth;
 
   initial clk = 1'b0;
   always #5 clk = ~clk;
 
   // ---- the calculator's inputs: from the ports, or from the player while it runs ----
-  localparam int PinW = 192;                 // one input set in a record (see the player below)
+  localparam int PinW = 224;                 // one input set in a record (see the player below)
   logic                  playing;
   logic                  p_start, p_abort;
   logic [PinW-1:0]       p_pins;
@@ -86,6 +89,9 @@ module tb_svpwm_calc #(
   logic [1:0]            dpwm;
   logic [CntWidth-1:0]   period;
   logic [DtWidth:0]      thr;
+  logic [2:0]            isign;
+  logic [DtWidth-1:0]    hdr, hdf;
+  logic [3*DtWidth+5:0]  carry_out;         // the volt-second carry: not exercised by this test yet
 
   assign start    = playing ? p_start : start_i;
   assign abort    = playing ? p_abort : abort_i;
@@ -103,6 +109,9 @@ module tb_svpwm_calc #(
   assign dpwm     = playing ? p_pins[151:150] : dpwm_i;
   assign period   = playing ? p_pins[152 +: CntWidth] : period_i;
   assign thr      = playing ? p_pins[168 +: DtWidth + 1] : thr_i;
+  assign isign    = playing ? p_pins[186:184] : isign_i;
+  assign hdr      = playing ? p_pins[192 +: DtWidth] : hdr_i;
+  assign hdf      = playing ? p_pins[208 +: DtWidth] : hdf_i;
 
   svpwm_calc #(.Compact(Compact), .Dsp(Dsp), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
     .clk_i      (clk),
@@ -121,14 +130,21 @@ module tb_svpwm_calc #(
     .vf_slope_i (vf_slope),
     .vf_mmax_i  (vf_mmax),
     .dpwm_i     (dpwm),
+    .om_i       (1'b0),      // overmodulation: not exercised by this test yet (the model's default, om = 0)
     .period_i   (period),
     .thr_i      (thr),
+    .isign_i    (isign),
+    .hdr_i      (hdr),
+    .hdf_i      (hdf),
+    .carry_i    ('0),        // the volt-second carry off (carry_en_i = 0: the model's default, no carry)
+    .carry_en_i (1'b0),
     .busy_o     (busy_o),
     .done_o     (done_o),
     .sector_o   (sector_o),
     .cmp_o      (cmp_o),
     .sat_o      (sat_o),
-    .err_o      (err_o)
+    .err_o      (err_o),
+    .carry_o    (carry_out)
   );
 
   // ---- handshake reference and checker (header) ----
@@ -136,7 +152,7 @@ module tb_svpwm_calc #(
   int unsigned          ref_st, cyc;       // ref_st: 0 idle, k = k-th clock after the accepted start
   logic                 ref_done;
 
-  assign held = {mode, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax, dpwm, period, thr};
+  assign held = {mode, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax, dpwm, period, thr, isign, hdr, hdf};
 
   always @(posedge clk or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -174,7 +190,8 @@ module tb_svpwm_calc #(
   // A record (test_svpwm_calc.py: REC_FIELDS), from bit 0: the control word (CtlW bits), the vector's
   // inputs, junk A (the aborted computation's inputs, or the idle gap's), junk B (the inputs after an
   // abort). An input set (PinW bits): mode[2:0], sector[5:3], angle[21:6], theta, m, fabs, v1, v2, vf_boost,
-  // vf_slope, vf_mmax (16 bits each from bit 22), dpwm[151:150], period[152 +: CntWidth], thr[168 +: DtWidth+1].
+  // vf_slope, vf_mmax (16 bits each from bit 22), dpwm[151:150], period[152 +: CntWidth], thr[168 +: DtWidth+1],
+  // isign[186:184], hdr[192 +: DtWidth], hdf[208 +: DtWidth].
   localparam int CtlW = 192;
   localparam int RecW = CtlW + 3 * PinW;
   logic [RecW-1:0] stim [MaxVec];

@@ -2,11 +2,12 @@
 """svpwm_calc (the core's one calculator) against the golden model, exact (==), and its handshake; both
 variants: Compact = 0 (every input mode, DPWM) and Compact = 1 (FREQ mode, continuous SVPWM).
 
-Expected results: model/svpwm_model/calc_prog.py expect(inp, compact) = fixed.modulate + fixed.snap_min_pulse
-per phase. VF: the RTL gets fabs_i = |freq| >> (fixed.FREQ_WIDTH - 17) as the core computes it; the model gets
-the signed freq word (fixed.vf_m takes the same bits of it). Compact = 1 ignores mode_i, theta_i, fabs_i, v1_i,
-v2_i, vf_*_i and dpwm_i: the compact vectors carry random words there (held while busy) and the model gets
-FREQ mode with dpwm off.
+Expected results: model/svpwm_model/calc_prog.py expect(inp, compact) = fixed.modulate (incl. the dead-time
+compensation fixed.dtc_shift: isign_i, hdr_i, hdf_i) + fixed.snap_min_pulse per phase. VF: the RTL gets fabs_i =
+|freq| >> (fixed.FREQ_WIDTH - 17) as the core computes it; the model gets the signed freq word (fixed.vf_m takes
+the same bits of it). Compact = 1 ignores mode_i, theta_i, fabs_i, v1_i, v2_i, vf_*_i, dpwm_i, isign_i, hdr_i
+and hdf_i: the compact vectors carry random words there (held while busy) and the model gets FREQ mode with
+dpwm and the compensation off.
 
 Contract (checked here):
 * start_i in cycle c (sampled by the rising edge ending cycle c) is accepted when idle (not busy_o) and
@@ -16,13 +17,16 @@ Contract (checked here):
 * sector_o, cmp_o, sat_o, err_o are the results ONLY in the done_o cycle; they may change while busy (so no
   check of them outside done cycles).
 * sector_i and angle_i are read at start_i only (scrambled here while busy); every other input (mode, theta,
-  m, fabs, v1, v2, vf_*, dpwm, period, thr) must hold from start_i until done_o, i.e. at every clock edge
-  from the one sampling start_i to the one raising done_o (the done cycle may already carry the next start's
-  inputs). The test holds them while busy and scrambles them only while idle; the harness checks that it does.
+  m, fabs, v1, v2, vf_*, dpwm, period, thr, isign, hdr, hdf) must hold from start_i until done_o, i.e. at every
+  clock edge from the one sampling start_i to the one raising done_o (the done cycle may already carry the next
+  start's inputs). The test holds them while busy and scrambles them only while idle; the harness checks that it
+  does. (fabs_i, period_i, thr_i, hdr_i, hdf_i may arrive one clock after start_i: not exercised here, the
+  test drives them with start_i; model/tests/test_calc_prog.py runs the program with them late.)
 * abort_i: back to idle at once (busy_o low in the next cycle), no done_o for that computation; abort_i
   together with start_i: the start is not taken; the next computation is exact.
 * restrictions kept by the vectors: period_i >= 2 thr_i, thr_i <= 2^(DtWidth+1) - 2 (dead time + minimum
-  pulse, each DtWidth bits), sector_i 0..5 for a computation that completes.
+  pulse, each DtWidth bits), sector_i 0..5 for a computation that completes; hdr_i, hdf_i <= 2^(DtWidth-1) =
+  ceil((2^DtWidth - 1) / 2), the largest the core gives (fixed.dtc_amounts; junk / ignored inputs: any word).
 LATENCY (clocks start_i -> done_o) is defined in one place below from the model; the harness gets it on its
 input latency_i and checks busy_o / done_o on every clock against a reference of the handshake (chk_o), the test
 checks the done time of every vector.
@@ -56,6 +60,12 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
   with P = 2^CntWidth - 1).
 * `directed_corners`: every (P, thr) corner x 5 references (x every DPWM setting, full); every ROM interval
   end (angle k 256 - 1, k 256) at the vertex and m = 0xFFFF.
+* `directed_dtc` (dead-time compensation): every isign 0..7 x sector (the sector fixes which phase is of class
+  hi / lo / mid, so every sign x class pattern) x m 0, 0x4000, vertex x every DPWM setting x 9 (hdr, hdf, thr,
+  P): (3, 5, 10), (24, 24, 48), (0, 512, 0) at P 1536 and a small P = 2 thr (P_MIN for thr 0); (512, 1, 1023)
+  at P = 2 thr = 2046 (1536 < 2 thr) and 2^CntWidth - 1; (1, 512, 2) at 2^CntWidth - 1 (C + hdf beyond P and
+  the counter width); theta' cycled through ANGLES; FREQ mode (5,184 vectors). Compact: every isign x sector
+  once with the settings and m cycled (48 vectors, the compensation ignored).
 * full only: `directed_vf` (V/f law: f = 0, linear, at / beyond mmax, -f, +-FreqMax, boost > mmax, zero /
   full-scale parameters), `directed_polar` (theta every 30 deg +-3 LSB x m, a full revolution),
   `directed_ab` (grid incl. -32768 / 32767, the zero vector, rings |v| 0.5 .. 1.99 at every 30 deg, vectors
@@ -63,25 +73,29 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
   theta' = 30 deg exactly, a full revolution), `directed_invalid` (modes 5..7: zero vector + err_o); each
   spread over every DPWM setting and the (P, thr) corners, half of them at P = 2^CntWidth - 1.
 * Verilator runs every directed vector. Icarus runs `directed_corners`, `_vf`, `_ab`, `_invalid` in full and
-  a complete subset of the three large sets (`icarus_subset`: every ICARUS_STRIDE = 3rd vector plus the first
-  vector of every category no kept vector covers yet; CALC_DIRECTED_STRIDE overrides, scripts/mutate.py sets
-  1): every (P, thr) corner and DPWM setting in each, and `directed_freq` every sector x theta' x m (1,411 of
-  3,360 vectors in the full variant), `directed_polar` every theta and every m (521 of 1,016), `directed_dq`
-  every theta and every (v1, v2) (724 of 1,944).
+  a complete subset of the four large sets (`icarus_subset`: every ICARUS_STRIDE = 3rd vector (`directed_dtc`:
+  64th, ICARUS_STRIDES) plus the first vector of every category no kept vector covers yet;
+  CALC_DIRECTED_STRIDE overrides, scripts/mutate.py sets 1): every (P, thr) corner and DPWM setting in each,
+  and `directed_freq` every sector x theta' x m (1,411 of 3,360 vectors in the full variant), `directed_polar`
+  every theta and every m (521 of 1,016), `directed_dq` every theta and every (v1, v2) (724 of 1,944),
+  `directed_dtc` every isign x sector x DPWM setting (so every sign x class pattern with every clamped phase),
+  every isign and every m at every (hdr, hdf, thr, P) (326 of 5,184).
 * `angle_sweep`: every in-sector angle 0 .. 0xFFFF (every 61st on Icarus) at m = vertex, vertex + 1, 0xFFFF
   or random, random sector, legal (P, thr), DPWM (full, FREQ mode).
-* `random_vectors`: seeded; full: every mode incl. 5..7, DPWM, V/f parameters, saturation; compact: junk on
-  the ignored inputs; P in [8, 2^CntWidth - 1] (often <= 4 thr_max) with thr up to min(P/2, thr_max),
-  thr_max / 0 often (snapping likely). 50,000 vectors on Verilator, 1,000 on Icarus (the cross-simulator
-  check of the same stream's start); CALC_NRAND overrides.
+* `random_vectors`: seeded; full: every mode incl. 5..7, DPWM, V/f parameters, saturation, half of them with
+  the dead-time compensation (isign random, hdr / hdf each 0, 1, ceil(thr / 2), 512 or uniform in 0..512), the
+  other half 0 / 0; compact: junk on the ignored inputs; P in [8, 2^CntWidth - 1] (often <= 4 thr_max) with thr
+  up to min(P/2, thr_max), thr_max / 0 often (snapping likely). 50,000 vectors on Verilator, 1,000 on Icarus
+  (the cross-simulator check of the same stream's start); CALC_NRAND overrides.
 * Icarus's cost: ~22 us per clock of the busy calculator (Compact = 0), the simulator's evaluation of the RTL
   itself (the same without cocotb, with the harness or the bare svpwm_calc; idle: ~4 us): vvp's behavioural
   processes of svpwm_calc (~27 per clock), not the ROMs, the harness's checker or Python. Verilator:
   ~0.4 us per clock without cocotb, ~0.5 with it (the player; the per-vector Python loop it replaced: ~0.6).
 
 * `serial_vectors` (build full_serial only: Compact = 0 with Dsp = 0, the serial multiplier no core builds):
-  every CALC_SERIAL_STRIDE-th vector of every directed set + CALC_SERIAL_NRAND random vectors; LATENCY is then
-  the full program's length on the serial unit (calc_prog.calc_latency(False, False)).
+  every CALC_SERIAL_STRIDE-th vector of every directed set (`directed_dtc`: every 4 x CALC_SERIAL_STRIDE-th,
+  SERIAL_THIN) + CALC_SERIAL_NRAND random vectors; LATENCY is then the full program's length on the serial
+  unit (calc_prog.calc_latency(False, False)).
 
 Builds: Compact 0 / 1 x CntWidth 16 / 12 (DtWidth 10), and full_serial (Dsp = 0, CntWidth 16: the groups
 `serial` only; its random part includes aborted computations); pytest items: build x scenario group x simulator, each in its own build directory
@@ -115,11 +129,12 @@ LATENCY = calc_latency(False, False) if SERIAL else {False: fixed.SAMPLE_LEAD - 
 
 CLK_NS = 10                  # the harness's clock period
 # player records (tb_svpwm_calc.sv: the vector player): an input set, the control word's fields (offset, width)
-PIN_W = CTL_W = 192
+CTL_W = 192
+PIN_W = 224
 REC_W = CTL_W + 3 * PIN_W
 MAX_VEC = 65600
 PIN_FIELDS = ((0, 3), (3, 3), (6, 16), (22, 16), (38, 16), (54, 16), (70, 16), (86, 16), (102, 16), (118, 16),
-              (134, 16), (150, 2), (152, 16), (168, 16))     # mode .. thr in Vec's order (fabs for freq)
+              (134, 16), (150, 2), (152, 16), (168, 16), (184, 3), (192, 16), (208, 16))   # Vec's mode .. hdf
 assert PIN_FIELDS[-1][0] + PIN_FIELDS[-1][1] <= PIN_W
 CTL_FIELDS = {"pre": (0, 2), "ak": (2, 9), "gap": (11, 2), "ast": (13, 1), "asec": (14, 3), "aang": (17, 16),
               "mid": (33, 1), "mk": (34, 9), "mst": (43, 1), "msec": (44, 3), "mang": (47, 16), "ssec": (63, 3),
@@ -153,6 +168,9 @@ class Vec:
     dpwm: int = 0
     period: int = P_MIN
     thr: int = 0
+    isign: int = 0           # current signs {c, b, a}, 1 = negative (dead-time compensation)
+    hdr: int = 0             # compensation: C - hdr for a positive current (0: off)
+    hdf: int = 0             # compensation: C + hdf for a negative current (0: off)
 
 
 def fabs(freq: int) -> int:
@@ -166,6 +184,8 @@ class CalcTB:
         self.W = len(dut.period_i)
         self.top = (1 << self.W) - 1
         self.thr_max = (1 << len(dut.thr_i)) - 2      # dead time + minimum pulse, each DtWidth bits
+        self.hd_word = (1 << len(dut.hdr_i)) - 1      # the largest hdr_i / hdf_i word (DtWidth bits)
+        self.hd_max = (self.hd_word + 2) >> 1         # the largest the core gives: ceil(dead time / 2)
         self.lat = LATENCY
         self.nplay = 0
 
@@ -173,9 +193,10 @@ class CalcTB:
     def expect(self, v: Vec) -> tuple[int, ...]:
         """(sector, C_a, C_b, C_c, sat, err) of the golden model."""
         assert 2 * v.thr <= v.period <= self.top and v.thr <= self.thr_max and 0 <= v.sector < 6, v
+        assert 0 <= v.isign < 8 and 0 <= v.hdr <= self.hd_word and 0 <= v.hdf <= self.hd_word, v
         inp = dict(period=v.period, thr=v.thr, sector=v.sector, a16=v.angle, m=v.m, mode=v.mode, freq=v.freq,
                    fabs=fabs(v.freq), theta=v.theta, v1=v.v1, v2=v.v2, vf_boost=v.boost, vf_slope=v.slope,
-                   vf_mmax=v.mmax, dpwm=v.dpwm)
+                   vf_mmax=v.mmax, dpwm=v.dpwm, isign=v.isign, hdr=v.hdr, hdf=v.hdf)
         sec, c, sat, err = calc_expect(inp, COMPACT)
         assert all(0 <= x <= v.period for x in c), (v, c)
         return (sec, *c, int(sat), int(err))
@@ -204,6 +225,9 @@ class CalcTB:
         d.dpwm_i.value = v.dpwm
         d.period_i.value = v.period
         d.thr_i.value = v.thr
+        d.isign_i.value = v.isign
+        d.hdr_i.value = v.hdr
+        d.hdf_i.value = v.hdf
 
     def drive_scrambled(self, start: int, v: Vec) -> None:
         """start_i and the inputs read at start_i only (sector_i, angle_i) of `scramble(v)`: what changes
@@ -220,7 +244,8 @@ class CalcTB:
                    rng.randrange(1 << 16), rng.randint(-fixed.FREQ_MAX, fixed.FREQ_MAX),
                    rng.randint(-32768, 32767), rng.randint(-32768, 32767), rng.randrange(1 << 16),
                    rng.randrange(1 << 16), rng.randrange(1 << 16), rng.randrange(4), rng.randrange(self.top + 1),
-                   rng.randrange(self.thr_max + 2))
+                   rng.randrange(self.thr_max + 2), rng.randrange(8), rng.randrange(self.hd_word + 1),
+                   rng.randrange(self.hd_word + 1))
 
     @staticmethod
     def scramble(v: Vec, rng: random.Random) -> Vec:
@@ -234,7 +259,8 @@ class CalcTB:
         return replace(v, mode=rng.randrange(8), theta=rng.randrange(1 << 16),
                        freq=rng.randint(-fixed.FREQ_MAX, fixed.FREQ_MAX), v1=rng.randint(-32768, 32767),
                        v2=rng.randint(-32768, 32767), boost=rng.randrange(1 << 16), slope=rng.randrange(1 << 16),
-                       mmax=rng.randrange(1 << 16), dpwm=rng.randrange(4))
+                       mmax=rng.randrange(1 << 16), dpwm=rng.randrange(4), isign=rng.randrange(8),
+                       hdr=rng.randrange(self.hd_word + 1), hdf=rng.randrange(self.hd_word + 1))
 
     def p_thr(self, rng: random.Random) -> tuple[int, int]:
         """A legal (P, thr), snapping likely."""
@@ -261,9 +287,15 @@ class CalcTB:
             mag, ph = rng.uniform(0, 1.99) * fixed.V_ONE, rng.uniform(0, 2 * math.pi)
             v1, v2 = (max(-32768, min(32767, round(mag * f(ph)))) for f in (math.cos, math.sin))
         freq = rng.randint(-fm, fm) if rng.random() < 0.5 else rng.randint(-(1 << 20), 1 << 20)
+        isign, hdr, hdf = 0, 0, 0
+        if rng.random() < 0.5:                                   # dead-time compensation (else off: 0 / 0)
+            hd = (0, 1, min(self.hd_max, (t + 1) // 2), self.hd_max)
+            isign = rng.randrange(8)
+            hdr, hdf = (rng.choice(hd) if rng.random() < 0.4 else rng.randint(0, self.hd_max) for _ in range(2))
         return Vec(mode, rng.randrange(6), rng.randrange(1 << 16), rng.randrange(1 << 16), m, freq, v1, v2,
                    rng.randrange(0x4000), rng.randrange(1 << 16) >> rng.randrange(17),
-                   rng.choice((rng.randrange(1 << 16), 0x8000, M_VERTEX, 0xFFFF)), rng.randrange(4), p, t)
+                   rng.choice((rng.randrange(1 << 16), 0x8000, M_VERTEX, 0xFFFF)), rng.randrange(4), p, t,
+                   isign, hdr, hdf)
 
     # ---- runs ----------------------------------------------------------------------------------------
     async def reset(self) -> None:
@@ -308,9 +340,13 @@ class CalcTB:
     @staticmethod
     def pins(v: Vec) -> int:
         """The calculator's input word of `v` in a player record (tb_svpwm_calc.sv: PinW; PIN_FIELDS)."""
-        return (v.mode | v.sector << 3 | v.angle << 6 | v.theta << 22 | v.m << 38 | fabs(v.freq) << 54
-                | (v.v1 & 0xFFFF) << 70 | (v.v2 & 0xFFFF) << 86 | v.boost << 102 | v.slope << 118 | v.mmax << 134
-                | v.dpwm << 150 | v.period << 152 | v.thr << 168)
+        word = 0
+        for (off, w), x in zip(PIN_FIELDS, (v.mode, v.sector, v.angle, v.theta, v.m, fabs(v.freq), v.v1 & 0xFFFF,
+                                            v.v2 & 0xFFFF, v.boost, v.slope, v.mmax, v.dpwm, v.period, v.thr,
+                                            v.isign, v.hdr, v.hdf), strict=True):
+            assert 0 <= x < (1 << w), (v, off, x)
+            word |= x << off
+        return word
 
     def record(self, i: int, v: Vec, exp: tuple[int, ...], rng: random.Random) -> tuple[int, dict]:
         """Vector i's player record (tb_svpwm_calc.sv: CtlW, the vector, junk A, junk B), its schedule drawn
@@ -471,7 +507,21 @@ def ab_on_lines() -> list[tuple[int, int]]:
     return out
 
 
-def directed(key: str, top: int, thr_max: int) -> list[Vec]:
+DTC_MS = (0, 0x4000, M_VERTEX)       # the dead-time compensation set's m: the zero vector, inside, the vertex
+
+
+def dtc_settings(top: int, hd_max: int) -> list[tuple[int, int, int, int]]:
+    """(hdr, hdf, thr, P) of the dead-time compensation set: small / equal / extreme amounts (hd_max = the
+    largest the core gives, ceil(dead time / 2)) at P = 1536 and a small P = 2 thr (P_MIN for thr 0); thr =
+    2 hd_max - 1 (P = 1536 < 2 thr: P = 2 thr instead) and hdf = hd_max also at the top P (C + hdf beyond P)."""
+    b = 2 * hd_max - 1
+    out = [(3, 5, 10, 1536), (3, 5, 10, 20), (24, 24, 48, 1536), (24, 24, 48, 96), (hd_max, 1, b, 2 * b),
+           (hd_max, 1, b, top), (0, hd_max, 0, 1536), (0, hd_max, 0, P_MIN), (1, hd_max, 2, top)]
+    assert all(2 * t <= p <= top for _, _, t, p in out)
+    return out
+
+
+def directed(key: str, top: int, thr_max: int, hd_max: int) -> list[Vec]:
     hi, lo = corners(top, thr_max)
     ndp = 1 if COMPACT else 4
     F, VF, PO, AB, DQ = fixed.MODE_FREQ, fixed.MODE_VF, fixed.MODE_POLAR, fixed.MODE_AB, fixed.MODE_DQ
@@ -492,6 +542,17 @@ def directed(key: str, top: int, thr_max: int) -> list[Vec]:
                 if 0 <= a <= 0xFFFF:
                     out.append(Vec(F, k % 6, a, m=(M_VERTEX, 0xFFFF)[k & 1], dpwm=k % ndp, period=top,
                                    thr=(k * 7) % (thr_max + 1)))
+        return out
+    if key == "dtc":             # dead-time compensation: every isign x sector x m x DPWM x (hdr, hdf, thr, P)
+        sets = dtc_settings(top, hd_max)
+        if COMPACT:              # ignored there: every isign x sector once, the settings and m cycled
+            return [Vec(F, s, ANGLES[(8 * s + g) % len(ANGLES)], m=DTC_MS[(8 * s + g) % 3], period=p, thr=t,
+                        isign=g, hdr=r, hdf=f)
+                    for s in range(6) for g in range(8) for r, f, t, p in [sets[(8 * s + g) % len(sets)]]]
+        out, i = [], 0
+        for (r, f, t, p), m, d, s, g in itertools.product(sets, DTC_MS, range(ndp), range(6), range(8)):
+            out.append(Vec(F, s, ANGLES[i % len(ANGLES)], m=m, dpwm=d, period=p, thr=t, isign=g, hdr=r, hdf=f))
+            i += 1
         return out
     assert not COMPACT, key
     fm = fixed.FREQ_MAX
@@ -538,18 +599,23 @@ def directed(key: str, top: int, thr_max: int) -> list[Vec]:
 
 # ---- cocotb tests -----------------------------------------------------------------------------------------
 
-DIRECTED = ("freq", "corners", "vf", "polar", "ab", "dq", "invalid")     # vf .. invalid: full variant only
+DIRECTED = ("freq", "corners", "dtc", "vf", "polar", "ab", "dq", "invalid")     # vf .. invalid: full variant only
 
 
 # Icarus (~22 us per clock of the busy calculator, the simulator's own evaluation of the RTL: see the module
-# docstring) runs a complete subset of the three large sets: every ICARUS_STRIDE-th vector and, in list order,
+# docstring) runs a complete subset of the four large sets: every ICARUS_STRIDE-th vector and, in list order,
 # every vector that is the first of a category (below) no kept vector has covered yet. Verilator runs them all.
 ICARUS_STRIDE = 3
+ICARUS_STRIDES = {"dtc": 64}         # a set whose categories below already are most of its subset
 _CAT_COMMON = (lambda v: (v.period, v.thr), lambda v: v.dpwm)
 CATEGORIES = {
     "freq":  (lambda v: (v.sector, v.angle, v.m),),                            # every sector x theta' x m
     "polar": (lambda v: v.theta, lambda v: v.m, lambda v: (v.theta in BOUNDARY, v.m)),   # every theta, every m
     "dq":    (lambda v: v.theta, lambda v: (v.v1, v.v2), lambda v: (v.theta in BOUNDARY, v.v1, v.v2)),
+    # every isign x sector (the sector fixes each phase's class hi / lo / mid: every sign x class pattern)
+    # x DPWM setting (the clamped phase with either sign), every isign and every m at every (hdr, hdf, thr, P)
+    "dtc":   (lambda v: (v.isign, v.sector, v.dpwm), lambda v: (v.isign, v.hdr, v.hdf, v.thr, v.period),
+              lambda v: (v.m, v.hdr, v.hdf, v.thr, v.period)),
 }
 
 
@@ -573,8 +639,9 @@ def icarus_subset(key: str, vecs: list[Vec], stride: int) -> list[Vec]:
 def _directed_test(key: str):
     async def t(dut):
         tb = CalcTB(dut)
-        vecs = directed(key, tb.top, tb.thr_max)
-        stride = int(os.environ.get("CALC_DIRECTED_STRIDE", ICARUS_STRIDE if icarus() else 1))
+        vecs = directed(key, tb.top, tb.thr_max, tb.hd_max)
+        default = ICARUS_STRIDES.get(key, ICARUS_STRIDE) if icarus() else 1
+        stride = int(os.environ.get("CALC_DIRECTED_STRIDE", default))
         sub = icarus_subset(key, vecs, stride)
         if len(sub) < len(vecs):
             dut._log.info("%s: %d of the %d vectors (stride %d + every category)", key, len(sub), len(vecs), stride)
@@ -616,6 +683,9 @@ async def random_vectors(dut):
     await tb.run_vectors([tb.rand_vec(rng) for _ in range(n)], rng, "random")
 
 
+SERIAL_THIN = {"dtc": 4}     # the compensation adds no product: a quarter of the usual share (and half the random)
+
+
 @cocotb.test()
 async def serial_vectors(dut):
     """The full program on the serial multiplier (Dsp = 0, which no core builds): every SERIAL_STRIDE-th
@@ -624,7 +694,8 @@ async def serial_vectors(dut):
     tb = CalcTB(dut)
     stride = int(os.environ.get("CALC_SERIAL_STRIDE", 23 if icarus() else 5))
     rng = random.Random(0x5E71 + tb.W)
-    vecs = [v for k in DIRECTED for v in directed(k, tb.top, tb.thr_max)[::stride]]
+    vecs = [v for k in DIRECTED
+            for v in directed(k, tb.top, tb.thr_max, tb.hd_max)[::stride * SERIAL_THIN.get(k, 1)]]
     vecs += [tb.rand_vec(rng) for _ in range(int(os.environ.get("CALC_SERIAL_NRAND", 60 if icarus() else 600)))]
     await tb.reset()
     await tb.run_vectors(vecs, rng, "serial")
@@ -678,7 +749,7 @@ BUILDS = {
     "compact_cnt12": {"Compact": 1, "CntWidth": 12, "DtWidth": 10},
 }
 SCENARIOS = {
-    "directed":  ["directed_freq", "directed_corners"],
+    "directed":  ["directed_freq", "directed_corners", "directed_dtc"],
     "modes":     ["directed_vf", "directed_polar", "directed_ab", "directed_dq", "directed_invalid"],
     "sweep":     ["angle_sweep"],
     "random":    ["random_vectors"],

@@ -281,7 +281,16 @@ module svpwm_calc #(
     assign acc_q    = {held_q ? top_q : sign_q, acc_lo_q};
     assign a_val    = aen_q ? (ash_q ? {acc_q[W-2:0], 1'b0} : acc_q) : '0;
     assign b_val    = (b_ram_q ? ram_q : aux_q) ^ {W{binv_q}};
-    assign sum      = a_val + b_val + W'(cin_q);
+    // carry select (timing: the adder pass RAM word -> B -> carry chain -> sign register is the calculator's
+    // worst path): the low half and both versions of the high half (carry in 0 / 1) side by side, the high
+    // half chosen by the low half's carry out, so no chain is longer than W - WL bits
+    localparam int WL = W / 2;
+    logic [WL:0]     sum_lo;
+    logic [W-WL-1:0] sum_hi0, sum_hi1;
+    assign sum_lo  = {1'b0, a_val[WL-1:0]} + {1'b0, b_val[WL-1:0]} + (WL+1)'(cin_q);
+    assign sum_hi0 = a_val[W-1:WL] + b_val[W-1:WL];
+    assign sum_hi1 = a_val[W-1:WL] + b_val[W-1:WL] + (W-WL)'(1);
+    assign sum     = {sum_lo[WL] ? sum_hi1 : sum_hi0, sum_lo[WL-1:0]};
     assign sign     = sum[W-1];
     assign held_d   = !(busy && !hold);
     assign acc_lo_d = held_d ? acc_lo_q : sum[W-2:0];
@@ -382,6 +391,7 @@ module svpwm_calc #(
     logic [EW-1:0] hdf_w, mhdr_w;
     logic [EW-1:0] dpe_d [3];
     logic [EW-1:0] dpe_q [3];
+    logic [EW-1:0] dtc_d [3];
     logic [EW-1:0] dtc_in [3];
     logic          in_signed;
     assign hdf_w  = EW'(hdf_i);
@@ -390,9 +400,12 @@ module svpwm_calc #(
       assign dpe_d[ph] = (isign_i[ph] ? hdf_w : mhdr_w) + (carry_en_i ? carry_i[ph*EW +: EW] : EW'(0));
       always_ff @(posedge clk_i) dpe_q[ph] <= dpe_d[ph];
     end
+    // (registered again: sel -> class -> this multiplexer -> the input multiplexer -> in_q was a worst path;
+    // the program reads these inputs five steps after a sector change at the earliest: calc_prog.Builder)
     for (genvar j = 0; j < 3; j++) begin : gen_dtc_in
-      assign dtc_in[j] = ({EW{is_cls[j][0]}} & dpe_q[0]) | ({EW{is_cls[j][1]}} & dpe_q[1])
-                       | ({EW{is_cls[j][2]}} & dpe_q[2]);
+      assign dtc_d[j] = ({EW{is_cls[j][0]}} & dpe_q[0]) | ({EW{is_cls[j][1]}} & dpe_q[1])
+                      | ({EW{is_cls[j][2]}} & dpe_q[2]);
+      always_ff @(posedge clk_i) dtc_in[j] <= dtc_d[j];
     end
     logic [16:0] in_d, in_q;
     always_comb begin
@@ -502,18 +515,22 @@ module svpwm_calc #(
     // P + 3 2^(DtWidth-1)]: CntWidth + 2 bits signed (DtWidth + 2 <= CntWidth)
     localparam int CW = CntWidth + 2;
     logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q;
-    logic [EW-1:0] ecar, hthr_q, mhthr_q, cd2_q;
-    logic          c_hi_q, c_lo_q;
+    logic [EW-1:0] ecar, hthr_d, hthr_q, mhthr_d, mhthr_q, cd2_q;
+    logic          c_hi_d, c_hi_q, c_lo_d, c_lo_q;
     logic [2:0]    ldp_d, ldp_q, ldp2_q;      // the phases of the out step one / two clocks before
-    assign cmd_d = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
-    assign cd_d  = cmd_q - acc_q[CW-1:0];
-    assign ecar  = c_hi_q ? hthr_q : c_lo_q ? mhthr_q : cd2_q;
+    assign cmd_d   = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
+    assign cd_d    = cmd_q - acc_q[CW-1:0];
+    assign hthr_d  = EW'(({1'b0, thr_i} + 1'b1) >> 1);
+    assign mhthr_d = EW'(0) - hthr_q;
+    assign c_hi_d  = $signed(cd_q) > $signed(CW'(hthr_q));
+    assign c_lo_d  = $signed(cd_q) < $signed({{(CW-EW){mhthr_q[EW-1]}}, mhthr_q});
+    assign ecar    = c_hi_q ? hthr_q : c_lo_q ? mhthr_q : cd2_q;
     // (no reset: hthr from thr_i, which holds from the start; the stages follow the out steps)
     always_ff @(posedge clk_i) begin
-      hthr_q  <= EW'(({1'b0, thr_i} + 1'b1) >> 1);
-      mhthr_q <= EW'(0) - hthr_q;
-      c_hi_q  <= $signed(cd_q) > $signed(CW'(hthr_q));
-      c_lo_q  <= $signed(cd_q) < $signed({{(CW-EW){mhthr_q[EW-1]}}, mhthr_q});
+      hthr_q  <= hthr_d;
+      mhthr_q <= mhthr_d;
+      c_hi_q  <= c_hi_d;
+      c_lo_q  <= c_lo_d;
       cd2_q   <= cd_q[EW-1:0];
       ldp2_q  <= ldp_q;
     end

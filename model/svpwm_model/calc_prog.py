@@ -334,7 +334,7 @@ class Builder:
         if asrc == AS_ANG:
             need = max(need, self.ang_t + 2)
         if asrc == AS_IN and b.get("isel") in (IN_DHI, IN_DLO, IN_DMID):
-            need = max(need, self.sec_t + 4)              # (selected by the Table 4-3 codes: sel)
+            need = max(need, self.sec_t + 5)              # (by the Table 4-3 codes, sel, and registered)
         if b.get("ra") is not None and "ra" in b:
             rc = b.get("rc", RC_NONE)
             for a in range(b["ra"], b["ra"] + _RC_SPAN[rc]):

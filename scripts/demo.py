@@ -22,17 +22,28 @@ same value, RTL == model asserted on every edge). Printed per run and in demo.js
 fundamental vs command, largest line-voltage line below f_sw/2 (dBc), WTHD, phase-current THD; and the
 target, compensated Fig. 9 low-order maximum within 6 dB of the dead-time-free run (stated, not checked).
 
+Volt-second carry of the minimum-pulse rule (issue 15 item 5(b), docs/demo.md): m = 0.90 ... 1.00 at 50 Hz,
+P = 1536, 2 revolutions, dead time 1 us (thr = 48 clocks, minimum pulse 0) with vsc_en_i = 0 and 1, and
+dead time 0 as the reference; measured on the pole states (line a - b, ideal switches: the dead time acts
+only through the minimum-pulse rule): largest line below f_sw/2 (dBc), WTHD, fundamental vs m. Six-step
+overmodulation (item 5(c)): line fundamental from m = 1 to 0xFFFF with om_i = 1 (and om_i = 0 at four
+points) against the documented map ideal.overmod_fundamental. Both: targets stated with their gaps in the
+printout, demo.json and metrics.json, not checked (the checks below hold in every run).
+
 Outputs: build/demo/<point>.vcd (gate and pole waveforms, edges only, 1 ns units at the 48 MHz core clock),
 build/demo/<point>.json and build/demo/demo.json (all results), build/demo/report.md with fig_*.png and
 metrics.json (scripts/report.py). Exit code 0 only if every check passes: RTL == model on every edge,
 in-RTL safety checker clean, Table I in every period (not on the core's pole words with the compensation
 on: it may cross two switch commands within a dead time, fixed.dtc_shift), leg safety, fundamental within
-0.1 % (the Minas points), worst |C - C_ideal| <= 1 count.
+0.1 % (the Minas points), worst |C - C_ideal| <= 1 count (with the six-step law above 2/sqrt3 reported against
+the floating-point law, analysis.ideal_compare_law, not checked: its gain multiplies the clamp's rounding; Table I
+reported, not checked, in the carry-on runs with a dead time: the carry may swap two phases within thr).
 """
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import shutil
 import sys
 import time
@@ -55,14 +66,14 @@ POINTS = [
     dict(name="minas_fig9_5p1hz", f_hz=5.1, m=0.102, period=P_VERMA, dt=DT_1US, save_edges=True,
          title="Minas Fig. 9: 5.1 Hz, m = 0.102 (V/f: 5.1/50 of full; Minas gives no m)"),
     dict(name="minas_fig10_50hz", f_hz=50.0, m=0.9, period=P_VERMA, dt=DT_1US, save_edges=True, revs=2,
-         title="Minas Fig. 10: 50 Hz, m = 0.9 (our choice; Minas gives no m)"),
+         spectra=True, title="Minas Fig. 10: 50 Hz, m = 0.9 (our choice; Minas gives no m)"),
 ]
 # m sweep at 50 Hz (2 revolutions each = 625 carrier periods: no spectral leakage); m = 0.9 is the Fig. 10 point.
 # Dead time off is dt = 0: the pole states of a run with dead time are not, because the minimum-pulse rule
 # (pulses shorter than dead time + minimum pulse are dropped) acts on the poles: at m = 1 it drops the
 # shortest zero-vector pulses near 30 deg and adds ~9 % WTHD
 SWEEP = [dict(name=f"sweep_50hz_m{int(round(m * 100)):03d}", f_hz=50.0, m=m, period=P_VERMA, dt=0,
-              save_edges=True, revs=2, vcd=False, title=f"m sweep: 50 Hz, m = {m}")
+              save_edges=True, revs=2, vcd=False, spectra=True, title=f"m sweep: 50 Hz, m = {m}")
          for m in (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 1.0)]
 # AVR495 Fig. 6-1: speed steps with the RTL in the loop: slip-regulated PI speed loop writing only the frequency word;
 # the core runs in V/f mode (mode_i = 1) and computes m itself from motor.VfLaw's register words (motor.vf_words);
@@ -88,6 +99,69 @@ DTC = [dict(name=f"dtc_{tag}_{case}", kind="dtc", group=tag, case=case, f_hz=f, 
        for tag, f, m, revs, wu, fig in (("fig9", 5.1, 0.102, 1, 1, "Minas Fig. 9: 5.1 Hz, m = 0.102"),
                                         ("fig10", 50.0, 0.9, 2, 4, "Minas Fig. 10: 50 Hz, m = 0.9"))
        for case, dt, en, lab in DTC_CASES]
+
+
+# Volt-second carry of the minimum-pulse rule (issue 15 item 5(b)): m = 0.90 ... 1.00 at 50 Hz, 2 revolutions
+# (625 carrier periods: no leakage), dead time 1 us and minimum pulse 0 (thr = 48 clocks), carry off (vsc_en_i = 0)
+# and on, and dead time 0 as the reference. Measured on the pole states (line a - b with ideal switches), as the
+# m sweep: the dead time acts there only through the minimum-pulse rule, which the carry is about. Runs that
+# equal one of the runs above (same inputs and window: Fig. 10 is the carry-off run at m = 0.9, the sweep's
+# m = 1.0 the dead-time-0 one) are not run twice (VSC_REUSED).
+VSC_M = tuple(round(0.90 + 0.01 * k, 2) for k in range(11))
+VSC_CASES = (("dt0", 0, 0, "dead time 0"), ("off", DT_1US, 0, "dead time 1 us, carry off"),
+             ("on", DT_1US, 1, "dead time 1 us, carry on"))
+VSC = [dict(name=f"vsc_m{int(round(m * 100)):03d}_{case}", study="vsc", case=case, f_hz=50.0, m=m, period=P_VERMA,
+            dt=dt, mp=0, vsc=v, revs=2, save_edges=True, vcd=False, spectra=True, fund_check=False,
+            title=f"volt-second carry: 50 Hz, m = {m}, {lab}")
+       for m in VSC_M for case, dt, v, lab in VSC_CASES]
+# Six-step overmodulation law (issue 15 item 5(c)): line fundamental vs m up to six-step (om_i = 1), and the
+# angle-keeping clamp (om_i = 0) at four points, dead time 0, 50 Hz (312.5 carrier periods per revolution),
+# 2 revolutions; against the documented map ideal.overmod_fundamental (the run's fund_ref).
+OM_WORDS = (0x8000, round(1.05 * 0x8000), round(1.10 * 0x8000), 0x93CD, 0x9400, 0x9480, 0x9600, 0x9800, 0xA000,
+            0xC000, 0xFFFF)
+OM0_WORDS = (round(1.10 * 0x8000), 0x9480, 0xA000, 0xFFFF)
+
+
+def _om_point(word: int, om: int) -> dict:
+    from svpwm_model import ideal
+    m = word / 0x8000
+    return dict(name=f"om{om}_m{word:04x}", study="om", om=om, m_word=word, f_hz=50.0, m=m, period=P_VERMA, dt=0,
+                mp=0, revs=2, vcd=False, spectra=True, fund_check=False,
+                fund_ref=ideal.overmod_fundamental(m, six_step=bool(om)),
+                title=f"overmodulation: 50 Hz, m = {m:.5f} ({word:#06x}), om_i = {om} "
+                      f"({'six-step law' if om else 'angle-keeping clamp'})")
+
+
+def om_points() -> list[dict]:
+    return [_om_point(w, 1) for w in OM_WORDS] + [_om_point(w, 0) for w in OM0_WORDS]
+
+
+def run_key(pt: dict) -> tuple | None:
+    """The inputs and window of a constant-input run: two runs with the same key give the same edges."""
+    if pt.get("kind"):
+        return None
+    from svpwm_model import fixed
+    mw = int(pt["m_word"]) if pt.get("m_word") is not None else fixed.m_word(pt["m"])
+    return (float(pt["f_hz"]), mw, int(pt["period"]), int(pt["dt"]), int(pt.get("mp", 0)), int(bool(pt.get("vsc"))),
+            int(bool(pt.get("om"))), int(pt.get("revs", 1)), pt.get("n_periods"))
+
+
+def add_unique(points: list[dict], extra: list[dict]) -> dict[str, str]:
+    """Append the runs of ``extra`` whose key no run in ``points`` has; returns {skipped name: the run used},
+    and asks for the line figures (``spectra``) of a reused run."""
+    keys = {run_key(p): i for i, p in enumerate(points) if run_key(p) is not None}
+    alias = {}
+    for p in extra:
+        k = run_key(p)
+        if k in keys:
+            q = points[keys[k]]
+            if not q.get("spectra") or not q.get("save_edges"):
+                points[keys[k]] = dict(q, spectra=True, save_edges=True)
+            alias[p["name"]] = q["name"]
+        else:
+            keys[k] = len(points)
+            points.append(p)
+    return alias
 
 
 class SetupError(RuntimeError):
@@ -182,10 +256,33 @@ def print_dtc_run(r: dict) -> None:
         print(f"   FAILED: {f.splitlines()[0]}")
 
 
+def print_study_run(r: dict) -> None:
+    """One line per run of the volt-second carry / overmodulation studies (the tables follow at the end)."""
+    pt = r["point"]
+    if r.get("missing"):
+        print(f"   {pt['name']}: no results: the simulation did not complete this run (see the log above)")
+        return
+    L = r.get("line") or {}
+    h, ti = r["harness"], r["table_i"]
+    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    print(f"   {pt['name']:<16} m {r['m_word']:#06x} dt {pt['dt']:>2} vsc {int(bool(pt.get('vsc')))} om "
+          f"{int(bool(pt.get('om')))}: fund {L.get('fundamental', float('nan')):.5f} "
+          f"(ref {r['line_fundamental_commanded']:.5f}), low {L.get('low_order_max_dbc', float('nan')):6.1f} dBc, "
+          f"WTHD {100 * L.get('wthd', float('nan')):.4f} %; RTL == model {_pf(r['rtl_equals_model'])}, safety "
+          f"{_pf(safe)}, Table I {ti['failures']}/{ti['periods']}{'' if ti.get('checked', True) else ' (reported)'}, "
+          f"|C - ideal| {r['worst_abs_c_minus_ideal_counts']:.2f}{'' if r.get('duty_error_checked', True) else ' (reported)'}"
+          f" ({r['sim_wall_s']:.1f} s)")
+    for f in r.get("failures") or []:
+        print(f"   FAILED: {f.splitlines()[0]}")
+
+
 def print_table(r: dict) -> None:
     pt = r["point"]
     if pt.get("kind") == "dtc":
         print_dtc_run(r)
+        return
+    if pt.get("study"):
+        print_study_run(r)
         return
     if pt.get("kind") == "speed_loop":
         print()
@@ -257,19 +354,31 @@ def main(argv=None) -> int:
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sim", choices=("verilator", "icarus"), default="verilator",
                     help="simulator (default verilator; Icarus is ~20x slower: minutes for the 5.1 Hz point)")
-    ap.add_argument("--only", metavar="NAME", action="append", choices=[p["name"] for p in POINTS + DTC],
-                    help="run only this operating point or dead-time compensation run (repeatable)")
+    ap.add_argument("--only", metavar="NAME", action="append",
+                    choices=[p["name"] for p in POINTS + SWEEP + DTC + VSC + om_points()],
+                    help="run only this operating point, sweep point, dead-time compensation, volt-second carry "
+                         "(vsc_m<100 m>_{dt0,off,on}) or overmodulation (om<0|1>_m<word>) run (repeatable)")
     ap.add_argument("--out", type=Path, default=DEMO_DIR, help=f"output directory (default {rel(DEMO_DIR)})")
     ap.add_argument("--no-sweep", action="store_true", help="skip the m sweep at 50 Hz")
     ap.add_argument("--no-speed", action="store_true", help="skip the closed speed loop (~2.5 min on Verilator)")
     ap.add_argument("--no-dtc", action="store_true",
                     help="skip the dead-time compensation runs (6 runs with the motor model in the loop, ~1.5 min)")
+    ap.add_argument("--no-vsc", action="store_true",
+                    help="skip the volt-second carry runs (m = 0.90 ... 1.00, dead time 0 / 1 us carry off / on: "
+                         "31 runs, ~1.5 min)")
+    ap.add_argument("--no-om", action="store_true", help="skip the overmodulation runs (m = 1 ... 0xFFFF: 15 runs, ~45 s)")
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)
-    points = [p for p in POINTS + DTC if p["name"] in args.only] if args.only else list(POINTS)
+    every = POINTS + SWEEP + DTC + VSC + om_points()
+    points = [p for p in every if p["name"] in args.only] if args.only else list(POINTS)
+    alias: dict[str, str] = {}
     if not args.only and not args.no_sweep:
         points += SWEEP
+    if not args.only and not args.no_vsc:
+        alias.update(add_unique(points, VSC))
+    if not args.only and not args.no_om:
+        alias.update(add_unique(points, om_points()))
     if not args.only and not args.no_dtc:
         points += DTC
     if not args.only and not args.no_speed:
@@ -281,9 +390,11 @@ def main(argv=None) -> int:
         return 2
     t0 = time.perf_counter()
     n_dtc = sum(p.get("kind") == "dtc" for p in points)
+    n_vsc = sum(p.get("study") == "vsc" for p in points)
+    n_om = sum(p.get("study") == "om" for p in points)
     print(f"==> demo: {len(points)} run(s) on {args.sim}: Minas' two points (1 and 2 revolutions), "
-          f"{len(SWEEP) if SWEEP[0] in points else 0} m-sweep points at 50 Hz, {n_dtc} dead-time compensation "
-          f"run(s), "
+          f"{sum(p['name'].startswith('sweep_') for p in points)} m-sweep points at 50 Hz, {n_vsc} volt-second carry "
+          f"run(s) ({len(alias)} reused), {n_om} overmodulation run(s), {n_dtc} dead-time compensation run(s), "
           f"{'the speed loop (' + str(args.speed_time) + ' s motor time)' if any(p.get('kind') == 'speed_loop' for p in points) else 'no speed loop'}",
           flush=True)
     results, err = run_points(args.sim, points, args.out.resolve())
@@ -292,7 +403,13 @@ def main(argv=None) -> int:
     print("svpwm demo: Minas, Martins, Couto Fig. 9/10 operating points, RTL (rtl/*.sv) vs golden model and "
           "ideal SVPWM")
     print("m: project normalisation (m = 1: inscribed circle, line-to-line fundamental peak = m * Udc, Udc = 1)")
+    hdr = False
     for r in results:
+        if r["point"].get("study") and not hdr:
+            print()
+            print("== volt-second carry (m = 0.90 ... 1.00) and overmodulation (m = 1 ... 0xFFFF) runs: 50 Hz, P = 1536, "
+                  "2 revolutions each, pole states (line a - b)")
+            hdr = True
         print_table(r)
     summary = dict(command=" ".join([Path(sys.argv[0]).name] + (argv if argv is not None else sys.argv[1:])),
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), sim=args.sim, wall_s=wall, run_error=err,
@@ -310,6 +427,31 @@ def main(argv=None) -> int:
         print("target: " + sm["target"])
         for line in rep.dtc_verdict(sm):
             print("  " + line)
+    import report as rep
+    by_name = {r["point"]["name"]: r for r in results}
+    if any(p.get("study") == "vsc" for p in points) or any(a in by_name for a in alias.values()):
+        sm = rep.vsc_summary(by_name, VSC, alias)
+        if sm["rows"]:
+            summary["volt_second_carry"] = sm
+            print()
+            print("volt-second carry of the minimum-pulse rule: 50 Hz, P = 1536, dead time 1 us (thr = 48 clocks, "
+                  "minimum pulse 0), pole states (line a - b, ideal switches), 2 revolutions per point")
+            for line in rep.vsc_table(sm):
+                print("  " + line)
+            for line in rep.vsc_verdict(sm):
+                print("  " + line)
+    if any(p.get("study") == "om" for p in points):
+        sm = rep.om_summary(by_name, om_points(), alias)
+        if sm["rows"]:
+            summary["overmodulation"] = sm
+            print()
+            print("overmodulation: line fundamental (pole states, line a - b) vs m, 50 Hz, P = 1536, dead time 0, "
+                  "2 revolutions, against ideal.overmod_fundamental")
+            for line in rep.om_table(sm):
+                print("  " + line)
+            for line in rep.om_verdict(sm):
+                print("  " + line)
+    summary["reused_runs"] = alias
     out = args.out.resolve() / "demo.json"
     out.write_text(json.dumps(summary, indent=2, default=float) + "\n")
     print()
@@ -327,7 +469,8 @@ def main(argv=None) -> int:
         m = rep.build(args.out.resolve(), [p["name"] for p in POINTS if p["name"] in done],
                       [p["name"] for p in SWEEP if p["name"] in done],
                       SPEED["name"] if SPEED["name"] in done else None,
-                      [p["name"] for p in DTC if p["name"] in done])
+                      [p["name"] for p in DTC if p["name"] in done],
+                      vsc=summary.get("volt_second_carry"), om=summary.get("overmodulation"))
         report = args.out.resolve() / "report.md"
         print("\nfidelity (line voltage, dead time off):")
         for line in rep.fidelity_table(m):

@@ -479,6 +479,310 @@ def plot_dtc(tag: str, g: dict, out: Path, path: Path) -> None:
     plt.close(fig)
 
 
+# ---- volt-second carry of the minimum-pulse rule (issue 15 item 5(b)) ----------------------------------------
+VSC_TARGET_DB = 2.0         # with the carry: low-order max within 2 dB of the dead-time-0 run
+VSC_TARGET_WTHD = 0.01      # WTHD within 1 % (relative: wthd / wthd_dt0 - 1; also given in percentage points)
+VSC_TARGET_FUND = 2e-4      # line fundamental within 0.02 % of the command m
+VSC_LABEL = {"dt0": "dead time 0", "off": "1 µs, carry off", "on": "1 µs, carry on"}
+VSC_COLOR = {"dt0": "C0", "off": "C3", "on": "C2"}
+
+
+def _run_of(by_name: dict, name: str, alias: dict):
+    r = by_name.get(alias.get(name, name))
+    return None if r is None or r.get("missing") or not r.get("line") else r
+
+
+def vsc_summary(by_name: dict, grid: list[dict], alias: dict | None = None) -> dict:
+    """The volt-second carry study from the runs' JSON (demo_runs.run_point with ``spectra``): per m the runs
+    dead time 0 / 1 µs carry off / 1 µs carry on (``grid``: scripts/demo.VSC; ``alias``: a grid run answered by
+    an equal run of another part of the demo) and the three targets, with the carry, for every m: low-order max
+    (largest line below f_sw/2, dBc) within VSC_TARGET_DB of dead time 0; WTHD within 1 % (relative, and in
+    percentage points); line fundamental within 0.02 % of m. Stated, not checked."""
+    alias = alias or {}
+    rows: dict = {}
+    for pt in grid:
+        r = _run_of(by_name, pt["name"], alias)
+        if r is None:
+            continue
+        L = r["line"]
+        rows.setdefault(pt["m"], dict(m=pt["m"], runs={}))["runs"][pt["case"]] = dict(
+            name=r["point"]["name"], dt=r["point"]["dt"], vsc=int(bool(r["point"].get("vsc"))), m_word=r["m_word"],
+            fundamental=L["fundamental"], fund_err=L["fundamental"] / pt["m"] - 1,
+            low_order_max_dbc=L["low_order_max_dbc"], low_order_max_at_hz=L["low_order_max_at_hz"],
+            low_order_rss_dbc=L["low_order_rss_dbc"], wthd=L["wthd"], thd=L["thd"], h_max=L["h_max"],
+            low_order_max_below_1khz_dbc=r.get("line_low_order_max_below_1khz_dbc"),
+            rtl_equals_model=r["rtl_equals_model"], table_i_failures=r["table_i"]["failures"],
+            n_periods=r["n_periods"], sim_wall_s=r["sim_wall_s"])
+    out_rows = [rows[m] for m in sorted(rows)]
+    per_case: dict = {}
+    for row in out_rows:
+        rr = row["runs"]
+        if "dt0" not in rr:
+            continue
+        ref = rr["dt0"]
+        for case in ("off", "on"):
+            x = rr.get(case)
+            if x is None:
+                continue
+            x["low_vs_dt0_db"] = x["low_order_max_dbc"] - ref["low_order_max_dbc"]
+            x["wthd_vs_dt0_rel"] = x["wthd"] / ref["wthd"] - 1
+            x["wthd_vs_dt0_pp"] = 100 * (x["wthd"] - ref["wthd"])
+            c = per_case.setdefault(case, dict(n=0, low=[], wrel=[], wpp=[], fund=[]))
+            c["n"] += 1
+            c["low"].append((x["low_vs_dt0_db"], row["m"]))
+            c["wrel"].append((x["wthd_vs_dt0_rel"], row["m"]))
+            c["wpp"].append((x["wthd_vs_dt0_pp"], row["m"]))
+            c["fund"].append((abs(x["fund_err"]), row["m"]))
+    verdict = {}
+    for case, c in per_case.items():
+        lo, wr, wp, fu = max(c["low"]), max(c["wrel"]), max(c["wpp"]), max(c["fund"])
+        verdict[case] = dict(
+            points=c["n"],
+            low_order=dict(worst_db=lo[0], at_m=lo[1], met=lo[0] <= VSC_TARGET_DB,
+                           points_met=sum(v <= VSC_TARGET_DB for v, _ in c["low"])),
+            wthd_relative=dict(worst=wr[0], at_m=wr[1], met=wr[0] <= VSC_TARGET_WTHD,
+                               points_met=sum(v <= VSC_TARGET_WTHD for v, _ in c["wrel"])),
+            wthd_pp=dict(worst_pp=wp[0], at_m=wp[1], met=wp[0] <= 100 * VSC_TARGET_WTHD,
+                         points_met=sum(v <= 100 * VSC_TARGET_WTHD for v, _ in c["wpp"])),
+            fundamental=dict(worst_abs_rel=fu[0], at_m=fu[1], met=fu[0] <= VSC_TARGET_FUND,
+                             points_met=sum(v <= VSC_TARGET_FUND for v, _ in c["fund"])))
+    return dict(target=(f"with the carry, for every m in [0.9, 1.0]: largest line below f_sw/2 within "
+                        f"{VSC_TARGET_DB:g} dB of the dead-time-0 run; WTHD within {100 * VSC_TARGET_WTHD:g} % of it "
+                        f"(read as relative, WTHD / WTHD_dt0 - 1; in percentage points also given); line fundamental "
+                        f"within {100 * VSC_TARGET_FUND:g} % of m"),
+                target_db=VSC_TARGET_DB, target_wthd_rel=VSC_TARGET_WTHD, target_fund_rel=VSC_TARGET_FUND,
+                conditions=dict(f_hz=50.0, period=1536, f_sw_hz=F_CLK / (2 * 1536), dt_clocks=48, mp_clocks=0,
+                                thr_clocks=48, revolutions=2,
+                                measured_on="pole states (line a - b, ideal switches): the dead time acts only "
+                                            "through the minimum-pulse rule"),
+                rows=out_rows, verdict=verdict, reused=alias)
+
+
+def vsc_table(sm: dict) -> list[str]:
+    rows = ["| m | low-order max (dBc): dead time 0 / carry off / carry on (on − dt0) | WTHD %: dead time 0 / off / on "
+            "(on vs dt0: relative, pp) | fundamental error vs m: dead time 0 / off / on |",
+            "|---|---|---|---|"]
+    for row in sm["rows"]:
+        rr = row["runs"]
+
+        def g(case, key, fmt, scale=1.0):
+            x = rr.get(case)
+            return "–" if x is None else format(scale * x[key], fmt)
+        on = rr.get("on", {})
+        rows.append(f"| {row['m']:.2f} | {g('dt0', 'low_order_max_dbc', '.1f')} / {g('off', 'low_order_max_dbc', '.1f')} / "
+                    f"{g('on', 'low_order_max_dbc', '.1f')} ({on.get('low_vs_dt0_db', float('nan')):+.1f} dB) | "
+                    f"{g('dt0', 'wthd', '.4f', 100)} / {g('off', 'wthd', '.4f', 100)} / {g('on', 'wthd', '.4f', 100)} "
+                    f"({100 * on.get('wthd_vs_dt0_rel', float('nan')):+.2f} %, {on.get('wthd_vs_dt0_pp', float('nan')):+.4f} pp) | "
+                    f"{g('dt0', 'fund_err', '+.4f', 100)} / {g('off', 'fund_err', '+.4f', 100)} / "
+                    f"{g('on', 'fund_err', '+.4f', 100)} % |")
+    return rows
+
+
+def vsc_verdict(sm: dict) -> list[str]:
+    out = []
+    for case in ("on", "off"):
+        v = sm["verdict"].get(case)
+        if v is None:
+            continue
+        lab = "carry on" if case == "on" else "carry off"
+        lo, wr, wp, fu = v["low_order"], v["wthd_relative"], v["wthd_pp"], v["fundamental"]
+
+        def mt(ok):
+            return "MET" if ok else "NOT MET"
+        out.append(f"{lab}: low-order max within {sm['target_db']:g} dB of dead time 0: {mt(lo['met'])} "
+                   f"({lo['points_met']}/{v['points']} points; worst {lo['worst_db']:+.1f} dB at m = {lo['at_m']:.2f}"
+                   + ("" if lo["met"] else f", {lo['worst_db'] - sm['target_db']:.1f} dB over the target") + ")")
+        out.append(f"{lab}: WTHD within {100 * sm['target_wthd_rel']:g} % (relative): {mt(wr['met'])} "
+                   f"({wr['points_met']}/{v['points']}; worst {100 * wr['worst']:+.2f} % at m = {wr['at_m']:.2f}); "
+                   f"read as percentage points: {mt(wp['met'])} (worst {wp['worst_pp']:+.4f} pp)")
+        out.append(f"{lab}: fundamental within {100 * sm['target_fund_rel']:g} % of m: {mt(fu['met'])} "
+                   f"({fu['points_met']}/{v['points']}; worst |error| {100 * fu['worst_abs_rel']:.4f} % at "
+                   f"m = {fu['at_m']:.2f})")
+    return out
+
+
+def plot_vsc(sm: dict, out: Path, path: Path) -> None:
+    """Three measures vs m for the three cases, and the line spectra below f_sw/2 at the m where the carry-on
+    run is furthest from the dead-time-0 run."""
+    rows = sm["rows"]
+    fig, ax = plt.subplots(4, 1, figsize=(10, 13))
+    for case in ("dt0", "off", "on"):
+        xs = [(r["m"], r["runs"][case]) for r in rows if case in r["runs"]]
+        if not xs:
+            continue
+        m = [a for a, _ in xs]
+        ax[0].plot(m, [x["low_order_max_dbc"] for _, x in xs], "o-", color=VSC_COLOR[case], label=VSC_LABEL[case])
+        ax[1].plot(m, [100 * x["wthd"] for _, x in xs], "o-", color=VSC_COLOR[case], label=VSC_LABEL[case])
+        ax[2].plot(m, [100 * x["fund_err"] for _, x in xs], "o-", color=VSC_COLOR[case], label=VSC_LABEL[case])
+    ref = [(r["m"], r["runs"]["dt0"]) for r in rows if "dt0" in r["runs"]]
+    if ref:
+        ax[0].plot([a for a, _ in ref], [x["low_order_max_dbc"] + sm["target_db"] for _, x in ref], ":", color="0.4",
+                   label=f"dead time 0 + {sm['target_db']:g} dB (target for carry on)")
+        ax[1].plot([a for a, _ in ref], [100 * x["wthd"] * (1 + sm["target_wthd_rel"]) for _, x in ref], ":",
+                   color="0.4", label=f"dead time 0 × {1 + sm['target_wthd_rel']:g} (target, relative)")
+    ax[2].axhspan(-100 * sm["target_fund_rel"], 100 * sm["target_fund_rel"], color="g", alpha=0.12,
+                  label=f"±{100 * sm['target_fund_rel']:g} % (target)")
+    ax[0].set_ylabel("largest line < f_sw/2 (dBc)")
+    ax[0].set_title("Volt-second carry of the minimum-pulse rule: 50 Hz, P = 1536 (f_sw = 15.625 kHz), dead time 1 µs "
+                    "(thr = 48 clocks), minimum pulse 0;\nline a − b of the RTL's pole states over 2 revolutions "
+                    "(the dead time acts here only through the minimum-pulse rule)", fontsize=9)
+    ax[1].set_ylabel("WTHD (%)")
+    ax[2].set_ylabel("fundamental error vs m (%)")
+    ax[2].set_xlabel("m")
+    for a in ax[:3]:
+        a.legend(fontsize=8)
+    # spectra at the worst carry-on point
+    cand = [r for r in rows if "on" in r["runs"] and "low_vs_dt0_db" in r["runs"]["on"]]
+    if cand:
+        row = max(cand, key=lambda r: r["runs"]["on"]["low_vs_dt0_db"])
+        for case in ("dt0", "off", "on"):
+            x = row["runs"].get(case)
+            f = out / f"{x['name']}_edges.npz" if x else None
+            if f is None or not f.is_file():
+                continue
+            z = np.load(f)
+            fw = int(z["freq_word"])
+            f1 = f1_of(fw)
+            T = 2 / abs(f1)
+            t0 = float(z["valley"][1] + 1)
+            f_sw = F_CLK / (2 * int(z["period"][0]))
+            jmax = int(f_sw / 2 * T / F_CLK)
+            sp = S.spectra_from_edges(edges_list(z["pole_edges"]), t0, T, 2, jmax, F_CLK)
+            c = sp.line[0]
+            fk = np.arange(1, jmax + 1) / T * F_CLK
+            ax[3].plot(fk, db(c[1:], abs(c[2])), "o" if case == "dt0" else ".-", ms=2.5, lw=0.5,
+                       color=VSC_COLOR[case], alpha=0.85,
+                       label=f"{VSC_LABEL[case]}: max {x['low_order_max_dbc']:.1f} dBc at {x['low_order_max_at_hz']:.0f} Hz")
+        ax[3].set_xscale("log")
+        ax[3].set_xlim(40, F_CLK / (2 * 1536) / 2)
+        ax[3].set_ylim(-110, 5)
+        ax[3].set_xlabel("frequency (Hz), lines at k·f1/2, up to f_sw/2")
+        ax[3].set_ylabel("dBc")
+        ax[3].set_title(f"line a − b below f_sw/2 at m = {row['m']:.2f} (the carry-on run furthest from dead time 0)",
+                        fontsize=9)
+        ax[3].legend(fontsize=8, loc="upper right")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+# ---- six-step overmodulation law (issue 15 item 5(c)) --------------------------------------------------------
+OM_TARGET_REL = 0.01        # RTL line fundamental within 1 % of ideal.overmod_fundamental at every point
+OM_MONO_TOL = 1e-4          # Udc: "monotonic within" reading (the fixed-point law's bound against the map,
+#                             model/tests/test_overmod.py; near six-step the map rises ~1e-5 Udc from 0xA000 to 0xFFFF,
+#                             while the regularly sampled near-six-step waveform moves ~1e-4 Udc with f and window)
+
+
+def om_summary(by_name: dict, grid: list[dict], alias: dict | None = None) -> dict:
+    """The overmodulation study from the runs' JSON: per run (om, m word) the line fundamental of the pole
+    states over 2 revolutions against the documented map ideal.overmod_fundamental(m, six_step=om) (the run's
+    fund_ref); targets: monotonic in m (per law) and within 1 % of the map at every point."""
+    from svpwm_model import ideal
+    alias = alias or {}
+    rows = []
+    for pt in grid:
+        r = _run_of(by_name, pt["name"], alias)
+        if r is None:
+            continue
+        L = r["line"]
+        ref = float(pt["fund_ref"])
+        rows.append(dict(name=r["point"]["name"], om=int(pt["om"]), m_word=int(pt["m_word"]), m=pt["m"],
+                         fundamental=L["fundamental"], map=ref, err_rel=L["fundamental"] / ref - 1,
+                         low_order_max_dbc=L["low_order_max_dbc"], low_order_max_at_hz=L["low_order_max_at_hz"],
+                         wthd=L["wthd"], worst_abs_c_minus_ideal_counts=r["worst_abs_c_minus_ideal_counts"],
+                         rtl_equals_model=r["rtl_equals_model"], table_i_failures=r["table_i"]["failures"],
+                         sim_wall_s=r["sim_wall_s"]))
+    laws = {}
+    for om in (1, 0):
+        xs = sorted((x for x in rows if x["om"] == om), key=lambda x: x["m_word"])
+        if not xs:
+            continue
+        steps = [b["fundamental"] - a["fundamental"] for a, b in zip(xs, xs[1:])]
+        worst = max(xs, key=lambda x: abs(x["err_rel"]))
+        # strictly: every step >= 0 (the clamp, om = 0, is flat above 2/sqrt3: steps of ~1e-7 Udc either way are
+        # its rounding, so it is read with 1e-6 Udc); and within OM_MONO_TOL
+        tol = 0.0 if om else 1e-6
+        mono = all(d >= -tol for d in steps)
+        laws[f"om{om}"] = dict(points=len(xs), monotonic=mono, monotonic_within_tol=all(d >= -OM_MONO_TOL for d in steps),
+                               mono_tol_udc=OM_MONO_TOL, min_step_udc=min(steps) if steps else None,
+                               min_step_at=(xs[int(np.argmin(steps))]["m_word"], xs[int(np.argmin(steps)) + 1]["m_word"])
+                               if steps else None,
+                               worst_err_rel=worst["err_rel"], worst_at_word=worst["m_word"],
+                               within_target=all(abs(x["err_rel"]) <= OM_TARGET_REL for x in xs))
+    return dict(target=f"line fundamental monotonic in m and within {100 * OM_TARGET_REL:g} % of "
+                       f"ideal.overmod_fundamental at every point",
+                target_rel=OM_TARGET_REL, six_step_udc=ideal.SIX_STEP, vertex_m=ideal.M_VERTEX_F,
+                conditions=dict(f_hz=50.0, period=1536, dt_clocks=0, revolutions=2,
+                                measured_on="pole states (line a - b)"),
+                rows=sorted(rows, key=lambda x: (-x["om"], x["m_word"])), laws=laws, reused=alias)
+
+
+def om_table(sm: dict) -> list[str]:
+    rows = ["| om | m (word) | RTL line fundamental (Udc) | map (Udc) | error | largest line < f_sw/2 | "
+            "worst abs(C − C_ideal) (counts) |",
+            "|---|---|---|---|---|---|---|"]
+    for x in sm["rows"]:
+        rows.append(f"| {x['om']} | {x['m']:.5f} ({x['m_word']:#06x}) | {x['fundamental']:.5f} | {x['map']:.5f} | "
+                    f"{100 * x['err_rel']:+.4f} % | {x['low_order_max_dbc']:.1f} dBc ({x['low_order_max_at_hz']:.0f} Hz) | "
+                    f"{x['worst_abs_c_minus_ideal_counts']:.2f} |")
+    return rows
+
+
+def om_verdict(sm: dict) -> list[str]:
+    out = []
+    for key, v in sm["laws"].items():
+        lab = "six-step law (om 1)" if key == "om1" else "angle-keeping clamp (om 0)"
+        a, b = v["min_step_at"] or (0, 0)
+        out.append(f"{lab}: {v['points']} points, monotonic: {'MET' if v['monotonic'] else 'NOT MET'} "
+                   + (f"(smallest step {v['min_step_udc']:+.5f} Udc, {a:#06x} -> {b:#06x}; within "
+                      f"{v['mono_tol_udc']:g} Udc: {'MET' if v['monotonic_within_tol'] else 'NOT MET'})"
+                      if v["min_step_udc"] is not None else "(one point)")
+                   + f"; within {100 * sm['target_rel']:g} % of the map: "
+                   f"{'MET' if v['within_target'] else 'NOT MET'} (worst {100 * v['worst_err_rel']:+.4f} % at "
+                   f"{v['worst_at_word']:#06x})")
+    return out
+
+
+def plot_om(sm: dict, path: Path) -> None:
+    from svpwm_model import ideal
+    fig, ax = plt.subplots(1, 2, figsize=(13, 5.5), gridspec_kw=dict(width_ratios=[3, 2]))
+    mm = np.concatenate([np.linspace(1.0, 1.15, 31), np.linspace(1.1547, 1.2, 181), np.linspace(1.2, 2.0, 81)[1:]])
+    for a, lo, hi in ((ax[0], 1.0, 2.0), (ax[1], 1.14, 1.20)):
+        sel = (mm >= lo) & (mm <= hi)
+        a.plot(mm[sel], [ideal.overmod_fundamental(x, six_step=True) for x in mm[sel]], "-", color="C0", lw=1.2,
+               label="map, six-step law (ideal.overmod_fundamental)")
+        a.plot(mm[sel], [ideal.overmod_fundamental(x, six_step=False) for x in mm[sel]], "--", color="C1", lw=1.2,
+               label="map, angle-keeping clamp")
+        for om, mk, col in ((1, "o", "C0"), (0, "s", "C1")):
+            xs = [x for x in sm["rows"] if x["om"] == om and lo <= x["m"] <= hi]
+            a.plot([x["m"] for x in xs], [x["fundamental"] for x in xs], mk, color=col, mfc="none", ms=8, mew=1.5,
+                   label=f"RTL, om_i = {om}")
+        a.axhline(sm["six_step_udc"], color="k", ls=":", lw=1)
+        a.text(lo + 0.01 * (hi - lo), sm["six_step_udc"] + 0.002, f"six-step {sm['six_step_udc']:.4f} Udc", fontsize=8)
+        a.axvline(sm["vertex_m"], color="0.5", ls=":", lw=1)
+        a.set_xlim(lo, hi)
+        a.set_xlabel("m (UQ1.15 word / 0x8000)")
+    ax[0].text(sm["vertex_m"] + 0.01, 1.005, "2/√3 (0x93CD)", fontsize=8, color="0.4")
+    top = [x for x in sm["rows"] if x["om"] == 1 and x["m_word"] == 0xFFFF]
+    if top:
+        ax[0].annotate(f"0xFFFF: six-step, {top[0]['fundamental']:.5f} Udc", (top[0]["m"], top[0]["fundamental"]),
+                       textcoords="offset points", xytext=(-150, -30), fontsize=8, arrowprops=dict(arrowstyle="->"))
+    ax[0].set_ylim(0.99, 1.115)
+    ax[1].set_ylim(1.04, 1.11)
+    ax[0].set_ylabel("line fundamental (Udc)")
+    ax[0].legend(fontsize=8, loc="lower right")
+    ax[0].set_title("Overmodulation: line fundamental of the RTL's pole states vs m (50 Hz, P = 1536, 2 revolutions)",
+                    fontsize=9)
+    ax[1].set_title("zoom: 1.14 … 1.20 (the law's steep part)", fontsize=9)
+    for x in sm["rows"]:
+        if x["om"] == 1 and 1.14 <= x["m"] <= 1.2:
+            ax[1].annotate(f"{100 * x['err_rel']:+.3f} %", (x["m"], x["fundamental"]), textcoords="offset points",
+                           xytext=(6, -12), fontsize=7, color="C0")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 # ---- main --------------------------------------------------------------------------------------------
 def sweep_row(r, va) -> dict:
     fr = va["figures"]
@@ -497,7 +801,10 @@ def sweep_row(r, va) -> dict:
                 wthd_rounded=fr["ideal_rounded"]["line"]["wthd"], h_max=fr["rtl"]["line"]["h_max"])
 
 
-def build(out: Path, minas: list[str], sweep: list[str], speed: str | None, dtc: list[str] = ()) -> dict:
+def build(out: Path, minas: list[str], sweep: list[str], speed: str | None, dtc: list[str] = (),
+          vsc: dict | None = None, om: dict | None = None) -> dict:
+    """``vsc`` / ``om``: the summaries of the volt-second carry and overmodulation runs (vsc_summary,
+    om_summary, made by scripts/demo.py from the runs' JSON; in demo.json)."""
     t_start = time.perf_counter()
     metrics: dict = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), udc_v=M.UDC, motor=M.MotorParams().__dict__,
                          definitions=S.__doc__.split("Figures of merit")[1].split("The ideal references")[0].strip(),
@@ -636,6 +943,25 @@ def build(out: Path, minas: list[str], sweep: list[str], speed: str | None, dtc:
                    f"window is {g['window']['n_fund']} revolution(s) after {g['window']['warmup_s'] * 1e3:.0f} ms "
                    f"of warm-up. " + " ".join(dtc_verdict(dict(sm, points={tag: g}))) + ".")
             figs.append((p.name, f"Dead-time compensation, {tag} (issue 15 item 5(a))", txt))
+    if vsc and vsc.get("rows"):
+        metrics["volt_second_carry"] = vsc
+        p = out / "fig_vsc_sweep.png"
+        plot_vsc(vsc, out, p)
+        figs.append((p.name, "Volt-second carry of the minimum-pulse rule (issue 15 item 5(b))",
+                     "Largest line below f_sw/2, WTHD and the fundamental error of the line voltage a − b from the "
+                     "RTL's pole states at m = 0.90 … 1.00 (50 Hz, f_sw = 15.625 kHz, 2 revolutions): dead time 0, "
+                     "and dead time 1 µs (minimum pulse 0: thr = 48 clocks) with the carry off and on; the bottom "
+                     "panel is the spectrum at the m where the carry-on run is furthest from dead time 0. "
+                     + "; ".join(vsc_verdict(vsc)) + "."))
+    if om and om.get("rows"):
+        metrics["overmodulation"] = om
+        p = out / "fig_overmod.png"
+        plot_om(om, p)
+        figs.append((p.name, "Six-step overmodulation law (issue 15 item 5(c))",
+                     "Line fundamental of the RTL's pole states (50 Hz, P = 1536, dead time 0, 2 revolutions) vs m "
+                     "with om_i = 1 (the six-step law) and om_i = 0 (the angle-keeping clamp), on the documented map "
+                     "ideal.overmod_fundamental; dotted: six-step (2√3/π Udc) and the vertex magnitude 2/√3. "
+                     + "; ".join(om_verdict(om)) + "."))
     metrics["report_wall_s"] = time.perf_counter() - t_start
     (out / "metrics.json").write_text(json.dumps(metrics, indent=2, default=float) + "\n")
     write_md(out, metrics, figs)
@@ -678,6 +1004,18 @@ def write_md(out: Path, metrics: dict, figs):
                   "the safety checks).", ""]
         lines += dtc_table(sm)
         lines += [""] + [f"- {x}" for x in dtc_verdict(sm)] + [""]
+    sm = metrics.get("volt_second_carry")
+    if sm:
+        lines += ["## Volt-second carry of the minimum-pulse rule (50 Hz, dead time 1 µs, pole states)", "",
+                  "Target: " + sm["target"] + " (stated, not a check).", ""]
+        lines += vsc_table(sm)
+        lines += [""] + [f"- {x}" for x in vsc_verdict(sm)] + [""]
+    sm = metrics.get("overmodulation")
+    if sm:
+        lines += ["## Overmodulation: line fundamental vs m (50 Hz, dead time 0, pole states)", "",
+                  "Target: " + sm["target"] + " (stated, not a check).", ""]
+        lines += om_table(sm)
+        lines += [""] + [f"- {x}" for x in om_verdict(sm)] + [""]
     for fn, title, text in figs:
         lines += [f"## {title}", "", f"![{title}]({fn})", "", text, ""]
     mp = metrics["motor"]
@@ -697,5 +1035,5 @@ if __name__ == "__main__":
     sweep = [n for n in names if n.startswith("sweep_")]
     speed = next((n for n in names if kinds[n] == "speed_loop"), None)
     dtc = [n for n in names if kinds[n] == "dtc"]
-    build(out, minas, sweep, speed, dtc)
+    build(out, minas, sweep, speed, dtc, vsc=d.get("volt_second_carry"), om=d.get("overmodulation"))
     print(f"report: {out / 'report.md'}")

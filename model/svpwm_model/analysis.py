@@ -173,14 +173,42 @@ def line_fundamental(pole_events, freq_word: int, t0: int, revolutions: int) -> 
     return abs(fourier(a, b, t0, t1, f))
 
 
-def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0) -> tuple[float, int]:
+def ideal_compare_law(theta, m, period, six_step: bool = False) -> np.ndarray:
+    """Compare values (..., 3) of the ideal SVPWM with the core's overmodulation law, in floating point:
+    ideal.ideal_compare (the angle-keeping clamp onto the hexagon) and, with ``six_step``, the boundary
+    point's distance from the side's middle stretched by ideal.overmod_gain(m) (fixed.hex_clamp's law;
+    the geometry of ideal.overmod_fundamental). Inside the hexagon both are ideal_compare."""
+    from .ideal import overmod_gain, split_angle
+    from .tables import AVR495_TABLE_4_3
+    theta, m = np.broadcast_arrays(np.asarray(theta, dtype=np.float64), np.asarray(m, dtype=np.float64))
+    sector, tp = split_angle(theta)
+    da, db = m * np.sin(math.pi / 3 - tp), m * np.sin(tp)
+    tot = da + db
+    out = tot > 1.0
+    q = np.minimum(da, db) / np.where(out, tot, 1.0)
+    if six_step:
+        g = np.vectorize(overmod_gain)(m)
+        q = 0.5 - np.minimum(0.5, g * (0.5 - q))
+    first = da <= db
+    da = np.where(out, np.where(first, q, 1.0 - q), da)
+    db = np.where(out, np.where(first, 1.0 - q, q), db)
+    coef = np.asarray(AVR495_TABLE_4_3, dtype=np.float64)[sector]          # (..., 3, 2)
+    k = coef[..., 0] * da[..., None] + coef[..., 1] * db[..., None]
+    return np.asarray(period, dtype=np.float64)[..., None] / 2.0 * (1.0 + k)
+
+
+def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0, om: int = 0) -> tuple[float, int]:
     """Worst |C - C_ideal| in counts of the duty calculator over a run's modulated periods, and the
     period where it occurs (a core.Run, from the model or checked equal to the RTL).
 
     Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (run.theta[n]) and the
-    clamped m it used (run.m[n]). The values the core applies are these after the minimum-pulse rule,
-    which moves a value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that the
-    applied values are exactly the rule applied to the calculator's, within that bound, is asserted.
+    clamped m it used (run.m[n]); with ``om`` = 1 (the six-step law, om_i) ideal_compare_law, the law in
+    floating point (the core's g is UQ8.8 and stretches the clamp's rounding by up to g = 217 at m = 0xFFFF:
+    above 2/sqrt3 the error is not a calculator rounding bound). The values the core applies are these
+    after the minimum-pulse rule, which moves a value by at most ceil((dt + mp) / 2) counts near duty 0
+    and 1 by design; that the applied values are exactly the rule applied to the calculator's (plus the
+    volt-second carry the model recorded for that update, Update.carry_in, |carry| <= ceil(thr/2)), within
+    that bound, is asserted.
     With dead-time compensation (``hd`` = fixed.dtc_amounts, ``isign[n]`` the current signs the values of
     period n were computed with) the calculator's values are shifted by -hd / +hd per phase
     (fixed.dtc_shift) before the rule, and the ideal by the same integer: the error is that of the
@@ -194,15 +222,26 @@ def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0) -> t
     m_w = np.array([run.m[i] for i in n], dtype=np.int64)
     p_i = np.array([run.period[i] for i in n], dtype=np.int64)
     raw = fixed.compare_values_np(sector, a16, m_w, p_i)
+    if om:                                   # the six-step law where its gain is above 1 (scalar path)
+        for k in np.nonzero(m_w > fixed.M_VERTEX)[0]:
+            g = fixed.om_gain(int(m_w[k]), True)
+            t1, t2, _ = fixed.hex_clamp(*fixed.duties(int(a16[k]), int(m_w[k])), g)
+            raw[k] = fixed.dwell_compare(int(sector[k]), t1, t2, int(p_i[k]))
+    carry_at = {u.load: u.carry_in for u in getattr(run, "updates", ())}   # the update of period i loads at t_i
     for k, i in enumerate(n):
         thr = run.dt[i] + run.mp[i]
-        sh = raw[k]
+        hthr = (thr + 1) // 2
+        sh = tuple(int(c) for c in raw[k])
         if hd and isign is not None:
-            sh = fixed.dtc_shift(tuple(int(c) for c in raw[k]), int(isign[i]), hd, hd)
-        snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in sh)
-        assert snapped == tuple(run.cmp[i]), f"period {i}: applied {run.cmp[i]} != snap(raw) {snapped}"
-        assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(run.cmp[i], sh)), f"period {i}"
+            sh = fixed.dtc_shift(sh, int(isign[i]), hd, hd)
+        cin = carry_at.get(run.valley[i], (0, 0, 0))
+        assert all(abs(e) <= hthr for e in cin), f"period {i}: carry {cin} beyond +-{hthr}"
+        cmd = tuple(c + e for c, e in zip(sh, cin))
+        snapped = tuple(fixed.snap_min_pulse(c, int(p_i[k]), thr) for c in cmd)
+        assert snapped == tuple(run.cmp[i]), f"period {i}: applied {run.cmp[i]} != snap(raw + carry) {snapped}"
+        assert all(abs(a - b) <= hthr for a, b in zip(run.cmp[i], cmd)), f"period {i}"
     theta = th_int.astype(np.float64) / (1 << fixed.PHASE_WIDTH) * math.pi / 3
-    err = np.max(np.abs(raw - ideal_compare(theta, m_w / fixed.M_ONE, p_i.astype(np.float64))), axis=-1)
+    ideal = ideal_compare_law(theta, m_w / fixed.M_ONE, p_i.astype(np.float64), bool(om))
+    err = np.max(np.abs(raw - ideal), axis=-1)
     k = int(np.argmax(err))
     return float(err[k]), int(n[k])

@@ -68,7 +68,7 @@ module svpwm_calc #(
   input  logic [DtWidth-1:0]    hdr_i,        // compensation: C - hdr_i for a positive current (0: off)
   input  logic [DtWidth-1:0]    hdf_i,        // compensation: C + hdf_i for a negative current (0: off)
   input  logic [3*DtWidth+5:0]  carry_i,      // {c, b, a} volt-second carry in, DtWidth + 2 bits signed each
-  input  logic                  carry_en_i,   // 1: add carry_i (0: as if it were 0)
+  input  logic                  carry_en_i,   // 1: add carry_i (0: as if it were 0); |carry| <= 2^DtWidth
   output logic                  busy_o,       // a computation is running
   output logic                  done_o,       // one-cycle pulse: the outputs below are new
   output logic [2:0]            sector_o,     // sector of the result
@@ -515,7 +515,7 @@ module svpwm_calc #(
     // P + 3 2^(DtWidth-1)]: CntWidth + 2 bits signed (DtWidth + 2 <= CntWidth)
     localparam int CW = CntWidth + 2;
     logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q;
-    logic [EW-1:0] ecar, hthr_d, hthr_q, mhthr_d, mhthr_q, cd2_q;
+    logic [EW-1:0] ecar, hthr_d, hthr_q, hthr2_q, mhthr_d, mhthr_q, cd2_q;
     logic          c_hi_d, c_hi_q, c_lo_d, c_lo_q;
     logic [2:0]    ldp_d, ldp_q, ldp2_q;      // the phases of the out step one / two clocks before
     assign cmd_d   = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
@@ -524,11 +524,12 @@ module svpwm_calc #(
     assign mhthr_d = EW'(0) - hthr_q;
     assign c_hi_d  = $signed(cd_q) > $signed(CW'(hthr_q));
     assign c_lo_d  = $signed(cd_q) < $signed({{(CW-EW){mhthr_q[EW-1]}}, mhthr_q});
-    assign ecar    = c_hi_q ? hthr_q : c_lo_q ? mhthr_q : cd2_q;
+    assign ecar    = c_hi_q ? hthr2_q : c_lo_q ? mhthr_q : cd2_q;
     // (no reset: hthr from thr_i, which holds from the start; the stages follow the out steps)
     always_ff @(posedge clk_i) begin
       hthr_q  <= hthr_d;
       mhthr_q <= mhthr_d;
+      hthr2_q <= hthr_q;                      // (the limits the choice uses: from thr_i before done_o)
       c_hi_q  <= c_hi_d;
       c_lo_q  <= c_lo_d;
       cd2_q   <= cd_q[EW-1:0];

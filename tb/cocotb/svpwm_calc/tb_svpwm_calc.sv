@@ -7,22 +7,35 @@
 //   chk_o[0]  busy_o differs from the reference (start not taken / ignored, busy too short / long, abort)
 //   chk_o[1]  done_o differs from the reference (missing, early, late, extra, longer than one clock)
 //   chk_o[2]  the testbench broke the input rule: an input other than sector_i / angle_i changed while
-//             busy (checked at every edge the calculator computes on; a self-check of the stimulus)
+//             busy (checked at every edge the calculator computes on; thr_i, which may arrive one clock
+//             after start_i, from the edge ending the clock after the start on (Compact = 0); a self-check of
+//             the stimulus)
 // err_cyc_o: the clock count at the first flag (0: none). Results (sector_o, cmp_o, sat_o, err_o) are
-// defined only in the done cycle; the test compares them there. latency_i: the expected start -> done_o
-// clocks, driven by the test (its LATENCY, from the model), held from reset on.
+// defined only in the done cycle; the test compares them there; carry_o from the second clock after it (the
+// calculator's two registered stages after its last out step) until the next computation's out steps.
+// latency_i: the expected start -> done_o clocks, driven by the test (its LATENCY, from the model), held from
+// reset on.
 // Vector player (the test's run_vectors): the test writes one record per vector (the vector, the model's
 // expected results, the schedule around it: an aborted junk computation or an idle gap before it, the
 // sector_i / angle_i scrambles and start_i while busy) to a file, names it on stim_file_i with the count on
 // stim_n_i and raises play_i; the harness then drives every input of the calculator itself (on the falling
 // edges, as the test does) and checks in its own clock: busy_o, done_o one clock after each start; busy_o,
 // done_o, sector_o, cmp_o, sat_o, err_o === (0, 1, the expected results) 1 ns after the edge that must raise
-// done_o; busy_o, done_o low after an abort and in the clock after. It ends with start_i low for two clocks
+// done_o; carry_o === the expected carry 1 ns after the second rising edge after that one (done_o + 2: the
+// record after is then running already -- its start in the done cycle -- but its out steps, the last steps
+// of its program, or an aborted junk computation's, come much later); busy_o, done_o low after an abort and
+// in the clock after. In the first clock of every record (the done cycle of the vector before) thr_i keeps
+// its value and the record's own thr_i follows one clock later (the late arrival the calculator allows):
+// the carry limit of the vector before, +ceil(thr / 2), is registered from thr_i in its done cycle (Compact
+// = 1: not so; carry_o is 0 there, and the compact datapath reads thr_i with start_i). It ends
+// with start_i low for two clocks
 // and toggles play_end_o -- after the last record, or after the first record with a failed check (a broken
 // RTL fails in the time of the vectors up to it, not of the whole set: scripts/mutate.py); fail_n_o counts
 // that record's failed checks, fail_idx_o / fail_what_o / fail_got_o describe the
 // first (what: 1 busy_o, done_o one clock after the start, 2 the results, 3 not idle after an abort, 4 an
-// abort's clock after). The checker above sees the inputs the calculator gets (ports or player).
+// abort's clock after, 5 carry_o at done_o + 2: fail_car_o; checked while the record after runs, so the
+// player stops after that one and fail_n_o may count a check of it). The checker above sees the inputs the
+// calculator gets (ports or player).
 `timescale 1ns / 1ps
 `default_nettype none
 
@@ -49,11 +62,14 @@ module tb_svpwm_calc #(
   input  logic [15:0]           vf_slope_i,
   input  logic [15:0]           vf_mmax_i,
   input  logic [1:0]            dpwm_i,
+  input  logic                  om_i,
   input  logic [CntWidth-1:0]   period_i,
   input  logic [DtWidth:0]      thr_i,
   input  logic [2:0]            isign_i,
   input  logic [DtWidth-1:0]    hdr_i,
   input  logic [DtWidth-1:0]    hdf_i,
+  input  logic [3*DtWidth+5:0]  carry_i,
+  input  logic                  carry_en_i,
   input  logic                  play_i,       // rising: run the player (stim_file_i, stim_n_i)
   input  logic [8*64-1:0]       stim_file_i,  // file name (ASCII, right aligned, <= 64 characters)
   input  logic [31:0]           stim_n_i,     // records in the file
@@ -64,22 +80,25 @@ module tb_svpwm_calc #(
   output logic [3*CntWidth-1:0] cmp_o,
   output logic                  sat_o,
   output logic                  err_o,
+  output logic [3*DtWidth+5:0]  carry_o,
   output logic [2:0]            chk_o,
   output logic [31:0]           err_cyc_o,
   output logic                  play_end_o,   // toggles when the player has finished
   output logic [31:0]           fail_n_o,     // player: failed checks
   output logic [31:0]           fail_idx_o,   // player: record of the first failed check
   output logic [2:0]            fail_what_o,  // player: kind of the first failed check (header)
-  output logic [3*CntWidth+6:0] fail_got_o    // player: {busy, done, sector, cmp, sat, err} then
+  output logic [3*CntWidth+6:0] fail_got_o,   // player: {busy, done, sector, cmp, sat, err} then
+  output logic [3*DtWidth+5:0]  fail_car_o    // player: carry_o then
 );
 
-  localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + DtWidth + 1 + 3 + 2 * DtWidth;
+  localparam int EW        = DtWidth + 2;    // carry per phase, signed
+  localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + 3 + 2 * DtWidth + 1 + 3 * EW + 1;   // (thr_i apart)
 
   initial clk = 1'b0;
   always #5 clk = ~clk;
 
   // ---- the calculator's inputs: from the ports, or from the player while it runs ----
-  localparam int PinW = 224;                 // one input set in a record (see the player below)
+  localparam int PinW = 280;                 // one input set in a record (see the player below)
   logic                  playing;
   logic                  p_start, p_abort;
   logic [PinW-1:0]       p_pins;
@@ -91,7 +110,8 @@ module tb_svpwm_calc #(
   logic [DtWidth:0]      thr;
   logic [2:0]            isign;
   logic [DtWidth-1:0]    hdr, hdf;
-  logic [3*DtWidth+5:0]  carry_out;         // the volt-second carry: not exercised by this test yet
+  logic                  om, carry_en;
+  logic [3*EW-1:0]       carry;
 
   assign start    = playing ? p_start : start_i;
   assign abort    = playing ? p_abort : abort_i;
@@ -112,6 +132,11 @@ module tb_svpwm_calc #(
   assign isign    = playing ? p_pins[186:184] : isign_i;
   assign hdr      = playing ? p_pins[192 +: DtWidth] : hdr_i;
   assign hdf      = playing ? p_pins[208 +: DtWidth] : hdf_i;
+  assign om       = playing ? p_pins[224]     : om_i;
+  assign carry_en = playing ? p_pins[225]     : carry_en_i;
+  for (genvar ph = 0; ph < 3; ph++) begin : gen_carry
+    assign carry[ph*EW +: EW] = playing ? p_pins[232 + 16 * ph +: EW] : carry_i[ph*EW +: EW];
+  end
 
   svpwm_calc #(.Compact(Compact), .Dsp(Dsp), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
     .clk_i      (clk),
@@ -130,29 +155,34 @@ module tb_svpwm_calc #(
     .vf_slope_i (vf_slope),
     .vf_mmax_i  (vf_mmax),
     .dpwm_i     (dpwm),
-    .om_i       (1'b0),      // overmodulation: not exercised by this test yet (the model's default, om = 0)
+    .om_i       (om),
     .period_i   (period),
     .thr_i      (thr),
     .isign_i    (isign),
     .hdr_i      (hdr),
     .hdf_i      (hdf),
-    .carry_i    ('0),        // the volt-second carry off (carry_en_i = 0: the model's default, no carry)
-    .carry_en_i (1'b0),
+    .carry_i    (carry),
+    .carry_en_i (carry_en),
     .busy_o     (busy_o),
     .done_o     (done_o),
     .sector_o   (sector_o),
     .cmp_o      (cmp_o),
     .sat_o      (sat_o),
     .err_o      (err_o),
-    .carry_o    (carry_out)
+    .carry_o    (carry_o)
   );
 
   // ---- handshake reference and checker (header) ----
   logic [HeldWidth-1:0] held, held_q;
+  logic [DtWidth:0]     thr_q;             // thr_i: latched at the edge ending the clock after the start
+                                           // (Compact = 1: at the start, its datapath reads it then)
   int unsigned          ref_st, cyc;       // ref_st: 0 idle, k = k-th clock after the accepted start
   logic                 ref_done;
 
-  assign held = {mode, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax, dpwm, period, thr, isign, hdr, hdf};
+  assign held = {mode, theta, m, fabs, v1, v2, vf_boost, vf_slope, vf_mmax, dpwm, period, isign, hdr, hdf, om,
+                 carry, carry_en};
+  logic held_bad;
+  assign held_bad = ref_st != 0 && (held != held_q || ((Compact || ref_st >= 2) && thr != thr_q));
 
   always @(posedge clk or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -161,15 +191,17 @@ module tb_svpwm_calc #(
       ref_st    <= 0;
       ref_done  <= 1'b0;
       held_q    <= '0;
+      thr_q     <= '0;
       cyc       <= 0;
     end else begin
       cyc <= cyc + 1;
       // the outputs of the cycle this edge ends against the reference of that cycle
       if (busy_o != (ref_st != 0)) chk_o[0] <= 1'b1;
       if (done_o != ref_done)      chk_o[1] <= 1'b1;
-      if (ref_st != 0 && held != held_q) chk_o[2] <= 1'b1;
-      if (err_cyc_o == 0 && (busy_o != (ref_st != 0) || done_o != ref_done || (ref_st != 0 && held != held_q)))
+      if (held_bad)                chk_o[2] <= 1'b1;
+      if (err_cyc_o == 0 && (busy_o != (ref_st != 0) || done_o != ref_done || held_bad))
         err_cyc_o <= cyc + 1;
+      if (ref_st == 1 && !Compact) thr_q <= thr;
       // the reference's next cycle
       ref_done <= 1'b0;
       if (abort) begin
@@ -182,6 +214,7 @@ module tb_svpwm_calc #(
       end else if (start) begin
         ref_st <= 1;
         held_q <= held;
+        thr_q  <= thr;
       end
     end
   end
@@ -191,7 +224,8 @@ module tb_svpwm_calc #(
   // inputs, junk A (the aborted computation's inputs, or the idle gap's), junk B (the inputs after an
   // abort). An input set (PinW bits): mode[2:0], sector[5:3], angle[21:6], theta, m, fabs, v1, v2, vf_boost,
   // vf_slope, vf_mmax (16 bits each from bit 22), dpwm[151:150], period[152 +: CntWidth], thr[168 +: DtWidth+1],
-  // isign[186:184], hdr[192 +: DtWidth], hdf[208 +: DtWidth].
+  // isign[186:184], hdr[192 +: DtWidth], hdf[208 +: DtWidth], om[224], carry_en[225], carry a, b, c
+  // [232 + 16 ph +: DtWidth + 2].
   localparam int CtlW = 192;
   localparam int RecW = CtlW + 3 * PinW;
   logic [RecW-1:0] stim [MaxVec];
@@ -214,11 +248,17 @@ module tb_svpwm_calc #(
   localparam int CEc   = 85;    // 3 x 16: expected C_a, C_b, C_c
   localparam int CEsat = 133;   // 1: expected sat_o
   localparam int CEerr = 134;   // 1: expected err_o
+  localparam int CEcar = 135;   // 3 x 16: expected carry_o a, b, c (DtWidth + 2 bits each)
+  localparam int PThr  = 168;   // the thr field of an input set (16 bits)
 
   logic [RecW-1:0]       rec;
   logic [3*CntWidth-1:0] exp_cmp;
   logic [3*CntWidth+6:0] got;
+  logic [15:0]           thr_prev;
   int unsigned           gi, rest, mid;
+  // carry_o check, done_o + 2 (armed by the player at the done check, while the next record runs)
+  int unsigned           car_cnt, car_idx;
+  logic [3*EW-1:0]       car_exp;
 
   function automatic logic [3*CntWidth+6:0] outputs();
     return {busy_o, done_o, sector_o, cmp_o, sat_o, err_o};
@@ -229,9 +269,20 @@ module tb_svpwm_calc #(
       fail_idx_o  = idx;
       fail_what_o = what;
       fail_got_o  = outputs();
+      fail_car_o  = carry_o;
     end
     fail_n_o = fail_n_o + 1;
   endtask
+
+  always @(posedge clk) begin
+    if (car_cnt != 0) begin
+      car_cnt = car_cnt - 1;
+      if (car_cnt == 0) begin
+        #1;                                               // 1 ns after the second rising edge after done_o
+        if (carry_o !== car_exp) fail(car_idx, 3'd5);
+      end
+    end
+  end
 
   initial begin
     playing     = 1'b0;
@@ -243,6 +294,10 @@ module tb_svpwm_calc #(
     fail_idx_o  = 0;
     fail_what_o = 0;
     fail_got_o  = '0;
+    fail_car_o  = '0;
+    car_cnt     = 0;
+    car_idx     = 0;
+    car_exp     = '0;
   end
 
   always @(posedge play_i) begin
@@ -251,6 +306,8 @@ module tb_svpwm_calc #(
     fail_idx_o  = 0;
     fail_what_o = 0;
     fail_got_o  = '0;
+    fail_car_o  = '0;
+    car_cnt     = 0;
     p_start     = 1'b0;
     p_abort     = 1'b0;
     p_pins      = {PinW{1'b0}};
@@ -258,11 +315,14 @@ module tb_svpwm_calc #(
     @(negedge clk);
     for (gi = 0; gi < stim_n_i && fail_n_o == 0; gi++) begin   // up to the first vector that fails
       rec = stim[gi];
+      thr_prev = p_pins[PThr +: 16];                      // thr_i in the record's first clock (header)
       if (rec[CPre +: 2] == 2'd1) begin                  // an aborted junk computation
         p_start = 1'b1;
         p_pins  = rec[CtlW + PinW +: PinW];
+        if (!Compact) p_pins[PThr +: 16] = thr_prev;
         p_abort = (rec[CAk +: 9] == 9'd0);
         @(negedge clk);
+        p_pins[PThr +: 16] = rec[CtlW + PinW + PThr +: 16];
         if (rec[CAk +: 9] != 9'd0) begin
           p_start        = rec[CAst];
           p_pins[5:3]    = rec[CAsec +: 3];
@@ -281,14 +341,19 @@ module tb_svpwm_calc #(
       end else if (rec[CPre +: 2] == 2'd2) begin         // an idle gap, every input scrambled
         p_start = 1'b0;
         p_pins  = rec[CtlW + PinW +: PinW];
-        repeat (32'(rec[CGap +: 2])) @(negedge clk);
+        if (!Compact) p_pins[PThr +: 16] = thr_prev;
+        @(negedge clk);
+        p_pins[PThr +: 16] = rec[CtlW + PinW + PThr +: 16];
+        repeat (32'(rec[CGap +: 2]) - 1) @(negedge clk);
       end
       p_start = 1'b1;                                     // the vector
       p_pins  = rec[CtlW +: PinW];
+      if (!Compact && rec[CPre +: 2] == 2'd0) p_pins[PThr +: 16] = thr_prev;   // back to back: thr_i late
       @(negedge clk);
       if (busy_o !== 1'b1 || done_o !== 1'b0) fail(gi, 3'd1);
       p_pins[5:3]  = rec[CSsec +: 3];                     // start_i held high: ignored while busy
       p_pins[21:6] = rec[CSang +: 16];
+      p_pins[PThr +: 16] = rec[CtlW + PThr +: 16];
       // to 1 ns after the edge that must raise done_o (edge counts, then constant delays)
       rest = 32'(latency_i) - 1;                          // rising edges to the one that must raise done_o
       if (rec[CMid]) begin                                // scramble once more mid-computation
@@ -304,13 +369,18 @@ module tb_svpwm_calc #(
       #1;                                                 // 1 ns after it
       for (int ph = 0; ph < 3; ph++) exp_cmp[ph * CntWidth +: CntWidth] = rec[CEc + 16 * ph +: CntWidth];
       if (outputs() !== {1'b0, 1'b1, rec[CEsec +: 3], exp_cmp, rec[CEsat], rec[CEerr]}) fail(gi, 3'd2);
+      for (int ph = 0; ph < 3; ph++) car_exp[ph * EW +: EW] = rec[CEcar + 16 * ph +: EW];
+      car_idx = gi;
+      car_cnt = 2;                                        // carry_o at done_o + 2 (the block above)
       @(negedge clk);                                     // middle of the done cycle
     end
     p_start = 1'b0;
     p_abort = 1'b0;
+    thr_prev = p_pins[PThr +: 16];
     p_pins  = {PinW{1'b0}};
+    if (!Compact) p_pins[PThr +: 16] = thr_prev;          // (the last vector's carry limit: header)
     @(negedge clk);
-    @(negedge clk);
+    @(negedge clk);                                       // (after the last carry_o check)
     playing    = 1'b0;
     play_end_o = !play_end_o;
   end

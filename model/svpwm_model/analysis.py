@@ -104,9 +104,14 @@ class LegReport:
 
 def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
     """Gate safety from the edges alone: never both gates of a leg on; a gate turns on only after the
-    other has been off for the dead time in force (dt_at(cycle) for the deciding clock, cycle - 1);
-    every on-pulse lasts at least that dead time unless ended by a forced turn-off (``forced_off``:
-    cycles at which gates were forced off, e.g. a disable)."""
+    other has been off for the dead time in force (dt_at(cycle) for the deciding clock, cycle - 1: one
+    dead time, or a pair (dt, dtf): the high side waits dt, the low side dtf); every on-pulse lasts at
+    least max(dt, dtf) unless ended by a forced turn-off (``forced_off``: cycles at which gates were
+    forced off, e.g. a disable)."""
+    def edge_dts(c: int) -> tuple[int, int]:
+        d = dt_at(c)
+        return (d, d) if isinstance(d, int) else tuple(d)
+
     rep = LegReport()
     forced = set(forced_off)
     for leg in range(3):
@@ -122,7 +127,7 @@ def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
             for g in (0, 1):
                 if cur[g] and not prev[g]:                      # turn-on of gate g
                     other = 1 - g
-                    dt = dt_at(c - 1)
+                    dt = edge_dts(c - 1)[g]
                     if prev[other] and dt != 0:
                         rep.dead_time.append(f"leg {'abc'[leg]}: direct swap at cycle {c} with dt={dt}")
                     elif c - last_off[other] < dt:
@@ -131,7 +136,7 @@ def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
                 if prev[g] and not cur[g]:                      # turn-off of gate g
                     last_off[g] = c
                     width = c - on_since[g] if on_since[g] is not None else None
-                    if width is not None and width < dt_at(c - 1) and c not in forced:
+                    if width is not None and width < max(edge_dts(c - 1)) and c not in forced:
                         rep.short_pulse.append(f"leg {'abc'[leg]}: {'hl'[g]} pulse {width} < dt at {c}")
             prev = cur
     return rep
@@ -179,7 +184,7 @@ def duty_error(run) -> tuple[float, int]:
 
     Ideal: ideal.ideal_compare at the exact full-accumulator angle the core sampled (run.theta[n]) and the
     clamped m it used (run.m[n]). The values the core applies are these after the minimum-pulse rule,
-    which moves a value by at most ceil((dt + mp) / 2) counts near duty 0 and 1 by design; that the
+    which moves a value by at most ceil((max(dt, dtf) + mp) / 2) counts near duty 0 and 1 by design; that the
     applied values are exactly the rule applied to the calculator's, within that bound, is asserted."""
     n = np.arange(1, len(run.cmp))
     if n.size == 0:
@@ -191,7 +196,7 @@ def duty_error(run) -> tuple[float, int]:
     p_i = np.array([run.period[i] for i in n], dtype=np.int64)
     raw = fixed.compare_values_np(sector, a16, m_w, p_i)
     for k, i in enumerate(n):
-        thr = run.dt[i] + run.mp[i]
+        thr = max(run.dt[i], run.dtf[i] if run.dtf else run.dt[i]) + run.mp[i]    # max(dt, dtf) + mp
         snapped = tuple(fixed.snap_min_pulse(int(c), int(p_i[k]), thr) for c in raw[k])
         assert snapped == tuple(run.cmp[i]), f"period {i}: applied {run.cmp[i]} != snap(raw) {snapped}"
         assert all(abs(a - int(b)) <= (thr + 1) // 2 for a, b in zip(run.cmp[i], raw[k])), f"period {i}"

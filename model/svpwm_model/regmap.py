@@ -85,7 +85,7 @@ REGISTERS: tuple[Register, ...] = (
         Field("id", 0, 32, "const", 0x53565057, compact=True),
     ), compact=True),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x3, compact=True),
+        Field("minor", 0, 16, "const", 0x4, compact=True),
         Field("major", 16, 16, "const", 0x2, compact=True),
     ), compact=True),
     Register("CONFIG", 0x08, (
@@ -135,7 +135,9 @@ REGISTERS: tuple[Register, ...] = (
         Field("period", 0, 16, "rw", 0x600, port="period_o", compact=True),
     ), compact=True),
     Register("DT", 0x34, (
-        Field("dt", 0, 10, "rw", 0x0, port="dt_o", compact=True),
+        Field("dt", 0, 10, "rw", 0x0, port="dt_dt_o", compact=True),
+        Field("dtf", 16, 10, "rw", 0x0, port="dt_dtf_o"),
+        Field("dtf_en", 31, 1, "rw", 0x0, port="dt_dtf_en_o"),
     ), compact=True),
     Register("MP", 0x38, (
         Field("mp", 0, 10, "rw", 0x0, port="mp_o"),

@@ -175,6 +175,7 @@ module svpwm_core #(
       dt_cfg_q  <= '0;
       dtf_cfg_q <= '0;
       dtx_cfg_q <= '0;
+      dfg_cfg_q <= 1'b0;
       mp_cfg_q  <= '0;
       cbc_q     <= 1'b0;
       safe_lo_q <= 1'b0;
@@ -185,6 +186,7 @@ module svpwm_core #(
         dt_cfg_q  <= dt_i;
         dtf_cfg_q <= dtf_en_i ? dtf_i : dt_i;
         dtx_cfg_q <= (dtf_en_i && dtf_i > dt_i) ? dtf_i : dt_i;
+        dfg_cfg_q <= dtf_en_i && dtf_i > dt_i;
         mp_cfg_q  <= mp_i;
         cbc_q     <= trip_cbc_i;
         safe_lo_q <= safe_lo_i;
@@ -194,14 +196,18 @@ module svpwm_core #(
   end
 
   // ---- the falling dead time travels beside dt through every stage (configuration, use, next, active),
-  // so both change together at a valley, and so does the minimum-pulse threshold of the calculator,
-  // thr = max(dt, dtf) + mp (registered at every stage: a compare and a mux before the adder would not
-  // meet 48 MHz on the UP5K). The compact core has one dead time: its dtf is dt at every stage (its
-  // dtf_* / thr_* flops are never read and not built) and its calculator reads dt_next_q + mp_next_q.
+  // so both change together at a valley, and so does "dtf > dt" (dfg_*), which selects the larger one
+  // for the calculator's minimum-pulse threshold thr = max(dt, dtf) + mp: a 10-bit compare in front of
+  // that adder would not meet 48 MHz on the UP5K, and a registered max or thr at every stage adds 30
+  // flip-flops to the enables the run register drives (the board's slowest path). The compact core has
+  // one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not built)
+  // and its calculator reads dt_next_q + mp_next_q.
   logic [DtWidth-1:0] dtf_cfg, dtx_cfg, dtf_act;
   logic [DtWidth-1:0] dtf_use_q, dtf_next_d, dtf_next_q, dtf_d, dtf_q;
   logic [DtWidth-1:0] dt_use_q, dt_next_q, dt_q;
-  logic [DtWidth:0]   thr_use_q, thr_next_d, thr_next_q, thr_d, thr_q;
+  logic               dfg_cfg_q, dfg_use_q, dfg_next_d, dfg_next_q, dfg_d, dfg_q;   // dtf > dt
+  logic [DtWidth-1:0] calc_dtx;
+  logic [DtWidth-1:0] calc_mp;
 
   assign dtf_cfg  = Compact ? dt_cfg_q  : dtf_cfg_q;
   assign dtx_cfg  = Compact ? dt_cfg_q  : dtx_cfg_q;
@@ -227,13 +233,13 @@ module svpwm_core #(
       period_low_q <= CntWidth'(MinPeriod);
       dt_use_q     <= '0;
       dtf_use_q    <= '0;
-      thr_use_q    <= '0;
+      dfg_use_q    <= 1'b0;
       mp_use_q     <= '0;
     end else begin
       period_low_q <= period_low;
       dt_use_q     <= dt_cfg_q;
       dtf_use_q    <= dtf_cfg_q;
-      thr_use_q    <= thr;
+      dfg_use_q    <= dfg_cfg_q;
       mp_use_q     <= mp_cfg_q;
     end
   end
@@ -260,6 +266,13 @@ module svpwm_core #(
   // strobes then reach the ~150 register enables they drive straight from flip-flops
   logic [CntWidth-1:0] period_clamped_q;
   logic                period_under_q, ne_pin_q, ne_low_q, dtmp_chg_q, chg;
+  // one compare per field, kept, then their OR: 4 LUT levels for the 60 bits (ABC made 7 of the flat
+  // expression on the UP5K, the core's slowest path after the calculator's)
+  (* keep *) logic     dt_ne, dtf_ne, mp_ne;
+
+  assign dt_ne  = dt_cfg_q != dt_q;
+  assign dtf_ne = dtf_cfg != dtf_act;
+  assign mp_ne  = mp_cfg_q != mp_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -273,13 +286,13 @@ module svpwm_core #(
       period_under_q   <= period_under;
       ne_pin_q         <= period_i != period_act;
       ne_low_q         <= period_low_q != period_act;
-      dtmp_chg_q       <= dt_cfg_q != dt_q || dtf_cfg != dtf_act || mp_cfg_q != mp_q;
+      dtmp_chg_q       <= dt_ne || dtf_ne || mp_ne;
     end
   end
 
   // == (period_clamped_q != period_act || dt_use_q != dt_q || dtf_use_q != dtf_act || mp_use_q != mp_q): the
-  // compares are
-  // registered side by side (the period one for both sides of the clamp), the clamp's choice after them
+  // compares are registered side by side (the period one for both sides of the clamp), the clamp's choice
+  // after them
   assign chg = (period_under_q ? ne_low_q : ne_pin_q) || dtmp_chg_q;
 
   logic signed [FreqWidth-1:0] freq_d, freq_q;
@@ -422,13 +435,17 @@ module svpwm_core #(
   logic [DtWidth:0]      calc_thr_d, calc_thr_q;
 
   // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
-  // dead time it comes with; a peak update for the active period and dead time
+  // dead time it comes with; a peak update for the active period and dead time (the larger of dt, dtf
+  // by the registered flag: one mux level before the adder)
+  assign calc_dtx = ev_valley_q ? (dfg_next_q ? dtf_next_q : dt_next_q) : (dfg_q ? dtf_q : dt_q);
+  assign calc_mp  = ev_valley_q ? mp_next_q : mp_q;
+
   always_comb begin
     calc_period_d = calc_period_q;
     calc_thr_d    = calc_thr_q;
     if (start_q) begin
       calc_period_d = ev_valley_q ? period_next_q : period_act;
-      calc_thr_d    = ev_valley_q ? thr_next_q : thr_q;
+      calc_thr_d    = {1'b0, calc_dtx} + {1'b0, calc_mp};
     end
   end
 
@@ -484,13 +501,13 @@ module svpwm_core #(
     period_next_d  = period_next_q;
     dt_next_d      = dt_next_q;
     dtf_next_d     = dtf_next_q;
-    thr_next_d     = thr_next_q;
+    dfg_next_d     = dfg_next_q;
     mp_next_d      = mp_next_q;
     period_clamp_d = period_clamp_q;
     freq_clamp_d   = freq_clamp_q;
     dt_d           = dt_q;
     dtf_d          = dtf_q;
-    thr_d          = thr_q;
+    dfg_d          = dfg_q;
     mp_d           = mp_q;
     cmp_d          = cmp_q;
     sector_d       = sector_q;
@@ -507,7 +524,7 @@ module svpwm_core #(
       period_next_d  = period_clamped_q;
       dt_next_d      = dt_use_q;
       dtf_next_d     = dtf_use_q;
-      thr_next_d     = thr_use_q;
+      dfg_next_d     = dfg_use_q;
       mp_next_d      = mp_use_q;
       period_clamp_d = period_under_q;
     end
@@ -515,7 +532,7 @@ module svpwm_core #(
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration
       dt_d      = dt_use_q;
       dtf_d     = dtf_use_q;
-      thr_d     = thr_use_q;
+      dfg_d     = dfg_use_q;
       mp_d      = mp_use_q;
       valid_d   = 1'b0;
       pending_d = 1'b0;
@@ -523,7 +540,7 @@ module svpwm_core #(
       if (load) begin                      // valley: period (in the carrier), dead time, minimum pulse
         dt_d  = dt_next_q;
         dtf_d = dtf_next_q;
-        thr_d = thr_next_q;
+        dfg_d = dfg_next_q;
         mp_d  = mp_next_q;
       end
       if (take) begin                      // update point: all three phases together
@@ -558,13 +575,13 @@ module svpwm_core #(
       period_next_q  <= CntWidth'(MinPeriod);
       dt_next_q      <= '0;
       dtf_next_q     <= '0;
-      thr_next_q     <= '0;
+      dfg_next_q     <= 1'b0;
       mp_next_q      <= '0;
       period_clamp_q <= 1'b0;
       freq_clamp_q   <= 1'b0;
       dt_q           <= '0;
       dtf_q          <= '0;
-      thr_q          <= '0;
+      dfg_q          <= 1'b0;
       mp_q           <= '0;
       cmp_q          <= '0;
       sector_q       <= '0;
@@ -591,13 +608,13 @@ module svpwm_core #(
       period_next_q  <= period_next_d;
       dt_next_q      <= dt_next_d;
       dtf_next_q     <= dtf_next_d;
-      thr_next_q     <= thr_next_d;
+      dfg_next_q     <= dfg_next_d;
       mp_next_q      <= mp_next_d;
       period_clamp_q <= period_clamp_d;
       freq_clamp_q   <= freq_clamp_d;
       dt_q           <= dt_d;
       dtf_q          <= dtf_d;
-      thr_q          <= thr_d;
+      dfg_q          <= dfg_d;
       mp_q           <= mp_d;
       cmp_q          <= cmp_d;
       sector_q       <= sector_d;
@@ -742,9 +759,10 @@ module svpwm_core #(
     endfunction
     always_comb if (rst_ni) begin
       assert (dtx_cfg_q == ((dt_cfg_q >= dtf_cfg_q) ? dt_cfg_q : dtf_cfg_q));
-      assert (thr_use_q == f_thr(dt_use_q, dtf_use_q, mp_use_q));
-      assert (thr_next_q == f_thr(dt_next_q, dtf_next_q, mp_next_q));
-      assert (thr_q == f_thr(dt_q, dtf_q, mp_q));
+      assert (dfg_cfg_q == (dtf_cfg_q > dt_cfg_q) && dfg_use_q == (dtf_use_q > dt_use_q));
+      assert (dfg_next_q == (dtf_next_q > dt_next_q) && dfg_q == (dtf_q > dt_q));
+      if (start_q) assert (calc_thr_d == f_thr(ev_valley_q ? dt_next_q : dt_q, ev_valley_q ? dtf_next_q : dtf_q,
+                                               ev_valley_q ? mp_next_q : mp_q));
     end
     always_comb cover (rst_ni && f_hi[2] && running_o && dt_q > DtWidth'(1) && dtf_q > dt_q && locked_q);
     always_comb cover (rst_ni && f_lo[0] && running_o && dtf_q > DtWidth'(1) && dt_q > dtf_q);

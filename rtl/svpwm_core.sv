@@ -209,7 +209,7 @@ module svpwm_core #(
   logic [DtWidth-1:0] calc_dtx;
   logic [DtWidth-1:0] calc_mp;
 
-  assign dtf_cfg  = Compact ? dt_cfg_q  : dtf_cfg_q;
+  assign dtf_cfg  = Compact ? dt_q      : dtf_cfg_q;   // compact: = dtf_act, so no dtf compare (dtf_ne 0)
   assign dtx_cfg  = Compact ? dt_cfg_q  : dtx_cfg_q;
   assign dtf_act  = Compact ? dt_q      : dtf_q;
 
@@ -745,7 +745,7 @@ module svpwm_core #(
   always_comb if (rst_ni && pole_valid) assert (run);
   // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
-    assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && dtf_cfg == $past(dtf_cfg) && mp_cfg_q == $past(mp_cfg_q)
+    assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && dtf_cfg_q == $past(dtf_cfg_q) && mp_cfg_q == $past(mp_cfg_q)
             && pol_q == $past(pol_q) && safe_lo_q == $past(safe_lo_q) && cbc_q == $past(cbc_q));
   // not vacuous: gates switch, trips happen and release, compare values load
   always_comb cover (rst_ni && f_hi[0] && running_o);

@@ -223,7 +223,7 @@ module tb_svpwm_core #(
   assign rise_lo = gate_lo_o & ~lo_prev;
   assign fall_hi = hi_prev & ~gate_hi_o;
   assign fall_lo = lo_prev & ~gate_lo_o;
-  assign cfg     = {u_core.dt_cfg_q, u_core.dtf_cfg, u_core.mp_cfg_q, u_core.pol_q, u_core.safe_lo_q, u_core.cbc_q};
+  assign cfg     = {u_core.dt_cfg_q, u_core.dtf_cfg_q, u_core.mp_cfg_q, u_core.pol_q, u_core.safe_lo_q, u_core.cbc_q};
 
   initial begin
     shoot_through_count  = 0;

@@ -3,7 +3,7 @@
 random fault pulses (including sub-clock glitches), trip-mode / safe-state / polarity / lock changes,
 every input mode (invalid codes included), references beyond the hexagon, DPWM, update modes,
 prescaler, sync start and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
-never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, mp) unless
+never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, dtf, mp) unless
 a forced state made it, gates off in reset and while disabled, the trip forcing, the lock.
 
 The numbers of writes and clocks are logged and asserted (>= 10,000 writes on both simulators; the
@@ -50,8 +50,8 @@ class Stress:
         """One random 'register write' on the core's inputs."""
         d, rng = self.dut, self.rng
         what = rng.choices(["freq", "m", "period", "dt", "mp", "en", "cbc", "safe", "pol", "lock", "clear",
-                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync"],
-                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2])[0]
+                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync", "dtf"],
+                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2, 8])[0]
         if what == "freq":
             d.freq_i.value = rng.choice([rng.randint(-(1 << 23), (1 << 23) - 1), rng.randint(-200000, 200000), 0])
         elif what == "m":
@@ -62,6 +62,9 @@ class Stress:
             d.dt_i.value = self.rand_dt()
         elif what == "mp":
             d.mp_i.value = self.rand_dt()
+        elif what == "dtf":                                     # a separate falling dead time, or none
+            d.dtf_i.value = self.rand_dt()
+            d.dtf_en_i.value = 1 if rng.random() < 0.7 else 0
         elif what == "en":
             d.en_i.value = 1 if rng.random() < 0.8 else 0
         elif what == "cbc":
@@ -135,7 +138,7 @@ async def random_stress(dut):
     mean_gap = 12 if icarus else 1100                 # clocks between actions (~10^7 clocks on Verilator)
     st = Stress(dut, seed=int(os.environ.get("STRESS_SEED", "20261122")))
     d = dut
-    for sig, v in (("en_i", 0), ("freq_i", 0), ("m_i", 0), ("period_i", 200), ("dt_i", 5), ("mp_i", 0),
+    for sig, v in (("en_i", 0), ("freq_i", 0), ("m_i", 0), ("period_i", 200), ("dt_i", 5), ("dtf_i", 0), ("dtf_en_i", 0), ("mp_i", 0),
                    ("fault_i", 0), ("fault_clear_i", 0), ("trip_cbc_i", 0), ("safe_lo_i", 0), ("pol_i", 0),
                    ("lock_i", 0), ("mode_i", 0), ("theta_i", 0), ("v1_i", 0), ("v2_i", 0), ("vf_boost_i", 0),
                    ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),

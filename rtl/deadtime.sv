@@ -1,28 +1,32 @@
 // SPDX-License-Identifier: Apache-2.0
 // deadtime: dead-time insertion for one inverter leg, pole state -> high-side and low-side gates.
 // A gate turns off on the clock after its pole request goes away; the other gate turns on only after
-// both gates have been off for dt_i clocks (the WFG dead-time generator of Minas sec. III-A). Every
-// gate on-pulse lasts at least max(dt_i, mp_i) clocks (a gate turned on is held until then), and every
-// off-gap between two on-pulses of the same gate lasts at least dt_i clocks, so no runt pulse reaches a
-// gate. (svpwm_calc's minimum-pulse rule already keeps the pole pulses long enough; this is the
-// last-stage guarantee.)
+// both gates have been off for its edge's dead time (the WFG dead-time generator of Minas sec. III-A):
+// the high side dt_i clocks after the low side turned off (the rising-edge delay), the low side dtf_i
+// clocks after the high side turned off (the falling-edge delay; gate drivers whose turn-off delays
+// differ). Every gate on-pulse lasts at least max(dt_i, dtf_i, mp_i) clocks (a gate turned on is held
+// until then), and every off-gap between two on-pulses of the same gate lasts at least its own turn-on
+// dead time, so no runt pulse reaches a gate. (svpwm_calc's minimum-pulse rule already keeps the pole
+// pulses long enough; this is the last-stage guarantee.)
 // en_i low turns both gates off on the next clock, whatever the state (safety before pulse length).
 // Reset turns both gates off and the dead time counts from its release, so a reset in mid-pulse
 // is followed by the full dead time too.
 // brake_i (active braking, the trip safe state "low sides on"): the high side turns off on the next
-// clock, the low side turns on once both have been off for dt_i -- braking never skips the dead time.
-// dt_i = 0: complementary gates switch on the same clock edge (no dead time, still never both on).
-// dt_i and mp_i are read ONE CLOCK AHEAD: the values on the ports in clock n are in force in clock n + 1
-// (svpwm_core passes its dead-time registers, so a new dead time reaches the legs one clock after the
-// valley). The module compares its counter with them a clock early, so its decision reads only
+// clock, the low side turns on once both have been off for dtf_i -- braking never skips the dead time.
+// A zero dead time for an edge: that edge's gate turns on in the clock the other turns off (no dead
+// time, still never both on).
+// dt_i, dtf_i and mp_i are read ONE CLOCK AHEAD: the values on the ports in clock n are in force in
+// clock n + 1 (svpwm_core passes its dead-time registers, so a new dead time reaches the legs one clock
+// after the valley). The module compares its counter with them a clock early, so its decision reads only
 // flip-flops ("held" flags, not a 10-bit compare). In the first clock after reset no gate turns on
-// (nothing is held yet, whatever dt_i).
+// (nothing is held yet, whatever the dead times).
 // Timing: en_i, brake_i and pole_i arrive late in svpwm_core, so they only select between next states
 // formed from registers (en_i in the last LUT, brake_i / pole_i in the two last), and no counter or
 // flag register depends on them: the counter and its compares run a clock behind the decision for both
 // outcomes (the gates changed in the last clock or not) and a registered "changed" bit selects.
 // Parameters: DtWidth - dead-time / minimum-pulse width in bits (max 2^DtWidth - 1 clocks).
-// Latency: one clock from pole_i to a turn-off, 1 + dt clocks to the complementary turn-on (dt in force).
+// Latency: one clock from pole_i to a turn-off, 1 + dt (high side) / 1 + dtf (low side) clocks to the
+// complementary turn-on (the dead times in force).
 // Model: model/svpwm_model/deadtime.py (step_cycle, simulate_events).
 `default_nettype none
 
@@ -34,8 +38,9 @@ module deadtime #(
   input  logic               en_i,     // 0: both gates off (next clock)
   input  logic               brake_i,  // 1: low side wanted regardless of pole_i, high side off at once
   input  logic               pole_i,   // 1: high side wanted, 0: low side wanted
-  input  logic [DtWidth-1:0] dt_i,     // dead time in clocks, in force from the NEXT clock on
-  input  logic [DtWidth-1:0] mp_i,     // minimum on-pulse in clocks (on-time >= max(dt, mp)), next clock
+  input  logic [DtWidth-1:0] dt_i,     // rising dead time (low off -> high on), clocks, from the NEXT clock
+  input  logic [DtWidth-1:0] dtf_i,    // falling dead time (high off -> low on), clocks, next clock
+  input  logic [DtWidth-1:0] mp_i,     // minimum on-pulse in clocks (on-time >= max(dt, dtf, mp)), next clock
   output logic               hi_o,     // high-side gate (registered), 1 = on
   output logic               lo_o      // low-side gate (registered), 1 = on
 );
@@ -51,9 +56,10 @@ module deadtime #(
   // stay), and chg_q (the last clock changed the gates) selects in the next clock.
   //   ncnt1_q: ~cnt1 unless the last clock changed the gates (then cnt1 = 2): a down-counter saturating
   //   at 0, so that dt <= cnt1 is the carry-out of dt + ncnt1_q, a plain adder chain without inverters.
-  //   held = cnt >= dt and cnt >= 1 (the present state has lasted dt): after a change cnt = 1, so
-  //   held = (the last clock's dt <= 1), dt_le1_q; else held_stay_q, the last clock's dt <= cnt1.
-  //   held_mp the same for mp; held_on = held && held_mp (a gate on may turn off: minimum on-time served).
+  //   held_r = cnt >= dt and cnt >= 1 (off long enough for the high side): after a change cnt = 1, so
+  //   held_r = (the last clock's dt <= 1), dtr_le1_q; else held_r_stay_q, the last clock's dt <= cnt1.
+  //   held_f the same for dtf (the low side). held_on = cnt >= max(dt, dtf, mp, 1) (a gate on may turn
+  //   off: minimum on-time served), the three compares ANDed a clock ahead (on_le1_q, held_on_stay_q).
   localparam logic [DtWidth-1:0] CntMax   = '1;
   localparam logic [DtWidth-1:0] Cnt1Rst  = DtWidth'(1);                                // cnt1 after reset
   localparam logic [DtWidth-1:0] Cnt1Chg  = (DtWidth > 1) ? DtWidth'(2) : DtWidth'(1);  // cnt1 after a change
@@ -62,41 +68,48 @@ module deadtime #(
   logic               hi_d, hi_q, lo_d, lo_q;
   logic               chg_d, chg_q;            // the gates change in this clock / changed in the last
   logic [DtWidth-1:0] ncnt1_d, ncnt1_q;        // ~cnt1 if the last clock did not change the gates
-  logic               held_stay_d, held_stay_q, held_mp_stay_d, held_mp_stay_q;
-  logic               dt_le1_d, dt_le1_q, mp_le1_d, mp_le1_q;
-  logic               dtz_d, dtz_q;            // dt == 0 (a gate swaps straight to the other)
-  logic               held, held_mp, held_on;
-  logic [DtWidth:0]   dt_sum, mp_sum;
+  logic               held_r_stay_d, held_r_stay_q, held_f_stay_d, held_f_stay_q;
+  logic               held_on_stay_d, held_on_stay_q, mp_stay;
+  logic               dtr_le1_d, dtr_le1_q, dtf_le1_d, dtf_le1_q, on_le1_d, on_le1_q;
+  logic               dtzr_d, dtzr_q, dtzf_d, dtzf_q;  // dt / dtf == 0 (a gate swaps straight to the other)
+  logic               held_r, held_f, held_on;
+  logic [DtWidth:0]   dtr_sum, dtf_sum, mp_sum;
 
   assign ncnt1_d        = chg_q ? ~Cnt1Chg2 : (ncnt1_q == '0) ? ncnt1_q : ncnt1_q - 1'b1;
-  assign dt_sum         = {1'b0, dt_i} + {1'b0, ncnt1_q};       // no carry-out: dt <= ~ncnt1_q
+  assign dtr_sum        = {1'b0, dt_i} + {1'b0, ncnt1_q};       // no carry-out: dt <= ~ncnt1_q
+  assign dtf_sum        = {1'b0, dtf_i} + {1'b0, ncnt1_q};
   assign mp_sum         = {1'b0, mp_i} + {1'b0, ncnt1_q};
-  assign dt_le1_d       = (dt_i >> 1) == '0;
-  assign mp_le1_d       = (mp_i >> 1) == '0;
-  // dt <= cnt1; after a change dt <= 2 (written as == compares: a <= with a constant becomes a carry chain)
-  assign held_stay_d    = chg_q ? (dt_le1_d || dt_i == Cnt1Chg) : !dt_sum[DtWidth];
-  assign held_mp_stay_d = chg_q ? (mp_le1_d || mp_i == Cnt1Chg) : !mp_sum[DtWidth];
-  assign dtz_d          = (dt_i == '0);
-  assign held           = chg_q ? dt_le1_q : held_stay_q;
-  assign held_mp        = chg_q ? mp_le1_q : held_mp_stay_q;
-  assign held_on        = held && held_mp;
+  assign dtr_le1_d      = (dt_i >> 1) == '0;
+  assign dtf_le1_d      = (dtf_i >> 1) == '0;
+  assign on_le1_d       = dtr_le1_d && dtf_le1_d && (mp_i >> 1) == '0;
+  // x <= cnt1; after a change x <= 2 (written as == compares: a <= with a constant becomes a carry chain)
+  assign held_r_stay_d  = chg_q ? (dtr_le1_d || dt_i == Cnt1Chg) : !dtr_sum[DtWidth];
+  assign held_f_stay_d  = chg_q ? (dtf_le1_d || dtf_i == Cnt1Chg) : !dtf_sum[DtWidth];
+  assign mp_stay        = chg_q ? ((mp_i >> 1) == '0 || mp_i == Cnt1Chg) : !mp_sum[DtWidth];
+  assign held_on_stay_d = held_r_stay_d && held_f_stay_d && mp_stay;
+  assign dtzr_d         = (dt_i == '0);
+  assign dtzf_d         = (dtf_i == '0);
+  assign held_r         = chg_q ? dtr_le1_q : held_r_stay_q;
+  assign held_f         = chg_q ? dtf_le1_q : held_f_stay_q;
+  assign held_on        = chg_q ? on_le1_q : held_on_stay_q;
 
   // The next gates for each target, from registered state only; the late inputs (en_i, brake_i,
   // pole_i) only select between the four (a Shannon split on them, en_i last). Target HI (pole_i high):
   // a low side on turns off once its minimum on-time is served (a swap if dt == 0), with both off the
-  // high side turns on once the dead time is served; LO the mirror image; BRAKE: the high side turns
-  // off at once (a swap if dt == 0), the low side turns on after the dead time; OFF (en_i low): both off.
+  // high side turns on once the rising dead time is served; LO the mirror image with the falling dead
+  // time (a swap if dtf == 0); BRAKE: the high side turns off at once (a swap if dtf == 0), the low side
+  // turns on after the falling dead time; OFF (en_i low): both off.
   logic hi_hi, lo_hi, hi_lo, lo_lo, lo_brk, off, chg_off, chg_brk, chg_hi, chg_lo;
   assign off     = !hi_q && !lo_q;
-  assign hi_hi   = hi_q || (lo_q ? (held_on && dtz_q) : held);
+  assign hi_hi   = hi_q || (lo_q ? (held_on && dtzr_q) : held_r);
   assign lo_hi   = lo_q && !held_on;
   assign hi_lo   = hi_q && !held_on;
-  assign lo_lo   = lo_q || (hi_q ? (held_on && dtz_q) : held);
-  assign lo_brk  = lo_q || (hi_q ? dtz_q : held);
+  assign lo_lo   = lo_q || (hi_q ? (held_on && dtzf_q) : held_f);
+  assign lo_brk  = lo_q || (hi_q ? dtzf_q : held_f);
   assign chg_off = !off;
-  assign chg_brk = hi_q || (off && held);
-  assign chg_hi  = (lo_q && held_on) || (off && held);
-  assign chg_lo  = (hi_q && held_on) || (off && held);
+  assign chg_brk = hi_q || (off && held_f);
+  assign chg_hi  = (lo_q && held_on) || (off && held_r);
+  assign chg_lo  = (hi_q && held_on) || (off && held_f);
 
   // {hi, lo, change} of the next clock for each target, and the selection as two LUT-sized terms and
   // an en_i mux: pole_i / brake_i pass 2 LUT levels, en_i one (a plain if / else chain would put en_i
@@ -117,21 +130,27 @@ module deadtime #(
       lo_q           <= 1'b0;
       chg_q          <= 1'b0;
       ncnt1_q        <= ~Cnt1Rst;      // cnt = 0: a reset is a turn-off, the dead time runs from its release
-      held_stay_q    <= 1'b0;          // nothing held in the first clock (cnt = 0)
-      held_mp_stay_q <= 1'b0;
-      dt_le1_q       <= 1'b0;          // (read only after a change)
-      mp_le1_q       <= 1'b0;
-      dtz_q          <= 1'b0;          // (read only while a gate is on)
+      held_r_stay_q  <= 1'b0;          // nothing held in the first clock (cnt = 0)
+      held_f_stay_q  <= 1'b0;
+      held_on_stay_q <= 1'b0;
+      dtr_le1_q      <= 1'b0;          // (read only after a change)
+      dtf_le1_q      <= 1'b0;
+      on_le1_q       <= 1'b0;
+      dtzr_q         <= 1'b0;          // (read only while a gate is on)
+      dtzf_q         <= 1'b0;
     end else begin
       hi_q           <= hi_d;
       lo_q           <= lo_d;
       chg_q          <= chg_d;
       ncnt1_q        <= ncnt1_d;
-      held_stay_q    <= held_stay_d;
-      held_mp_stay_q <= held_mp_stay_d;
-      dt_le1_q       <= dt_le1_d;
-      mp_le1_q       <= mp_le1_d;
-      dtz_q          <= dtz_d;
+      held_r_stay_q  <= held_r_stay_d;
+      held_f_stay_q  <= held_f_stay_d;
+      held_on_stay_q <= held_on_stay_d;
+      dtr_le1_q      <= dtr_le1_d;
+      dtf_le1_q      <= dtf_le1_d;
+      on_le1_q       <= on_le1_d;
+      dtzr_q         <= dtzr_d;
+      dtzf_q         <= dtzf_d;
     end
   end
 
@@ -142,19 +161,23 @@ module deadtime #(
   logic f_past_valid = 1'b0;
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
-  // the dead time and minimum pulse in force (the ports one clock late), and the count itself (the
+  // the dead times and minimum pulse in force (the ports one clock late), and the count itself (the
   // counter the flags replace: cnt_q >= dt_i of the earlier design), updated in the clock of the change
   logic               f_chg, f_chg_q;
-  logic [DtWidth-1:0] f_dt_q, f_mp_q, f_cnt_q;
+  logic [DtWidth-1:0] f_dt_q, f_dtf_q, f_mp_q, f_cnt_q, f_on;
   assign f_chg = (hi_d != hi_q) || (lo_d != lo_q);
+  // the minimum on-time in force: max(dt, dtf, mp)
+  assign f_on  = (f_dt_q >= f_dtf_q && f_dt_q >= f_mp_q) ? f_dt_q : (f_dtf_q >= f_mp_q) ? f_dtf_q : f_mp_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       f_dt_q  <= '0;
+      f_dtf_q <= '0;
       f_mp_q  <= '0;
       f_cnt_q <= '0;
       f_chg_q <= 1'b0;
     end else begin
       f_dt_q  <= dt_i;
+      f_dtf_q <= dtf_i;
       f_mp_q  <= mp_i;
       f_cnt_q <= f_chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
       f_chg_q <= f_chg;
@@ -165,33 +188,57 @@ module deadtime #(
   always_comb assert (chg_q == f_chg_q);
   always_comb assert (chg_q ? f_cnt_q == DtWidth'(1) : ~ncnt1_q == ((&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1));
   // the precomputed flags are the compares they replace
-  always_comb assert (held == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
-  always_comb assert (held_mp == (f_cnt_q != '0 && f_cnt_q >= f_mp_q));
-  always_comb assert (held_on == (held && f_cnt_q >= f_mp_q));
-  always_comb if (!chg_q) assert (held_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
-  always_comb if (!chg_q) assert (held_mp_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_mp_q));
-  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (dt_le1_q == (f_dt_q <= 1));
-  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (mp_le1_q == (f_mp_q <= 1));
-  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) assert (dtz_q == (f_dt_q == '0));
+  always_comb assert (held_r == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb assert (held_f == (f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
+  always_comb assert (held_on == (f_cnt_q != '0 && f_cnt_q >= f_on));
+  always_comb if (!chg_q) assert (held_r_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb if (!chg_q) assert (held_f_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
+  always_comb if (!chg_q) assert (held_on_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_on));
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    assert (dtr_le1_q == (f_dt_q <= 1));
+    assert (dtf_le1_q == (f_dtf_q <= 1));
+    assert (on_le1_q == (f_on <= 1));
+    assert (dtzr_q == (f_dt_q == '0));
+    assert (dtzf_q == (f_dtf_q == '0));
+  end
   // never both gates of the leg on
   always_comb assert (!(hi_q && lo_q));
-  // a gate turns on only after both were off for the dead time in force (or swaps when it is 0)
+  // the high side turns on only after both were off for the rising dead time in force (or swaps from
+  // the low side when it is 0), the low side only after the falling dead time (or swaps when it is 0);
+  // both-off for cnt clocks: the other gate turned off at least cnt clocks ago
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && hi_q && !$past(hi_q))
     assert ($past(f_dt_q) == '0 || (!$past(lo_q) && $past(f_cnt_q) >= $past(f_dt_q)));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && lo_q && !$past(lo_q))
-    assert ($past(f_dt_q) == '0 || (!$past(hi_q) && $past(f_cnt_q) >= $past(f_dt_q)));
-  // every on-pulse lasts max(dt, mp) unless cut by en_i low or (high side) by braking
+    assert ($past(f_dtf_q) == '0 || (!$past(hi_q) && $past(f_cnt_q) >= $past(f_dtf_q)));
+  // a swap happens only at a zero dead time of its edge
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && hi_q && $past(lo_q))
+    assert ($past(f_dt_q) == '0);
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && lo_q && $past(hi_q))
+    assert ($past(f_dtf_q) == '0);
+  // every on-pulse lasts max(dt, dtf, mp) unless cut by en_i low or (high side) by braking
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !hi_q && $past(hi_q)
                                  && $past(en_i) && !$past(brake_i))
-    assert ($past(f_cnt_q) >= $past(f_dt_q) && $past(f_cnt_q) >= $past(f_mp_q));
+    assert ($past(f_cnt_q) >= $past(f_on));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !lo_q && $past(lo_q)
                                  && $past(en_i))
-    assert ($past(f_cnt_q) >= $past(f_dt_q) && $past(f_cnt_q) >= $past(f_mp_q));
+    assert ($past(f_cnt_q) >= $past(f_on));
   always_comb cover (hi_q && f_dt_q > DtWidth'(2) && f_mp_q > f_dt_q);
   always_comb cover (lo_q && f_dt_q > DtWidth'(2));
   always_comb cover (lo_q && brake_i && f_dt_q > DtWidth'(2));
   always_comb cover (hi_q && f_dt_q != dt_i);
   always_comb cover (held_on && chg_q && f_dt_q <= DtWidth'(1) && f_mp_q <= DtWidth'(1));
+  // asymmetric dead times: each turn-on after its own dead time, both orders of dt and dtf, braking,
+  // and a swap on one edge with a dead time on the other
+  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
+    cover (hi_q && !$past(hi_q) && !$past(lo_q) && $past(f_dt_q) > DtWidth'(2)
+           && $past(f_dtf_q) > $past(f_dt_q) && $past(f_cnt_q) == $past(f_dt_q));
+    cover (lo_q && !$past(lo_q) && !$past(hi_q) && $past(f_dtf_q) > DtWidth'(2)
+           && $past(f_dt_q) > $past(f_dtf_q) && $past(f_cnt_q) == $past(f_dtf_q));
+    cover (lo_q && !$past(lo_q) && $past(brake_i) && $past(f_dtf_q) > DtWidth'(2)
+           && $past(f_dt_q) != $past(f_dtf_q));
+    cover (lo_q && $past(hi_q) && $past(f_dtf_q) == '0 && $past(f_dt_q) > DtWidth'(2));
+    cover (hi_q && $past(lo_q) && $past(f_dt_q) == '0 && $past(f_dtf_q) > DtWidth'(2));
+  end
 `endif
 
 endmodule

@@ -32,12 +32,12 @@
 // update (fixed.snap_carry), cleared while stopped or tripped and across a period change.
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_en_i) is sampled SampleLead = svpwm_pkg::sample_lead(Compact) clocks before it (the
-// calculator's program + load 1: 250, compact 226), in the clock before count == SampleLead (down) /
-// P - SampleLead (up). period_i, dt_i, mp_i, upd_i, presc_i are
-// sampled there before every valley (period_i as it was one clock earlier) and take effect at it (dt and
-// mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an update at
-// that valley. Latency from a reference to the gates: at most a half carrier
+// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_en_i) is sampled SampleLead =
+// svpwm_pkg::sample_lead(Compact) clocks before it (the calculator's program + load 1: 250, compact 226), in
+// the clock before count == SampleLead (down) / P - SampleLead (up). period_i, dt_i, dtf_i, mp_i, upd_i,
+// presc_i are sampled there before every valley (period_i as it was one clock earlier) and take effect at it
+// (dead times and mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an
+// update at that valley. Latency from a reference to the gates: at most a half carrier
 // period (double update) or a carrier period (single) + SampleLead + 1 clock to a pole, + 1 + dead
 // time to a turned-on gate. freq_i steps the angle from the sample on. The modulator runs one clock
 // after en_i (a register: its first valley is the clock after en_i rises, with period_i as it was in the
@@ -48,8 +48,12 @@
 // run phase-aligned.
 // Safety (README "Safety"): fault_i forces the high sides (and, unless braking, the low sides) off
 // combinationally, latched or cycle-by-cycle; a shoot-through interlock is the last stage; the dead
-// time, minimum pulse, polarity and safe state are locked by lock_i until reset; out-of-range inputs
+// times, minimum pulse, polarity and safe state are locked by lock_i until reset; out-of-range inputs
 // are clamped and flagged, a too short period is lengthened (the dead time is never shortened).
+// Dead times: dt_i is the rising-edge one (clocks the high side waits after the low side turned off),
+// dtf_i the falling-edge one (clocks the low side waits after the high side turned off) when dtf_en_i is
+// 1, else the falling dead time is dt_i; the minimum-pulse threshold is max(dt, dtf) + mp. The compact
+// variant ignores dtf_i / dtf_en_i (one dead time, dt_i, no extra registers).
 `default_nettype none
 
 module svpwm_core #(
@@ -79,7 +83,9 @@ module svpwm_core #(
   input  logic [1:0]                  upd_i,           // update at 0 valley 1 peak 2 both (3: error)
   input  logic [7:0]                  presc_i,         // new values every presc_i + 1 opportunities
   input  logic [CntWidth-1:0]         period_i,        // half carrier period in clocks
-  input  logic [DtWidth-1:0]          dt_i,            // dead time in clocks (locked by lock_i)
+  input  logic [DtWidth-1:0]          dt_i,            // rising dead time (before a high side), clocks (locked)
+  input  logic [DtWidth-1:0]          dtf_i,           // falling dead time (before a low side), clocks (locked)
+  input  logic                        dtf_en_i,        // 1: use dtf_i; 0: falling = dt_i (locked)
   input  logic [DtWidth-1:0]          mp_i,            // minimum gate pulse in clocks (locked)
   input  logic                        dtc_en_i,        // dead-time compensation on (sampled with the reference)
   input  logic [2:0]                  isign_i,         // {c, b, a} phase current signs, 1 = negative (into
@@ -94,7 +100,7 @@ module svpwm_core #(
   input  logic                        safe_lo_i,       // safe state: 0 all off, 1 low sides on (locked)
   input  logic [1:0]                  pol_i,           // {lo, hi} pin polarity, 1 = active low (locked;
                                                        // taken only while en_i is low)
-  input  logic                        lock_i,          // locks dt, mp, safe state, trip mode, polarity
+  input  logic                        lock_i,          // locks dt, dtf, mp, safe state, trip mode, polarity
   output logic [2:0]                  gate_hi_o,       // {c, b, a} high-side gate pins (polarity applied)
   output logic [2:0]                  gate_lo_o,       // {c, b, a} low-side gate pins (polarity applied)
   output logic [2:0]                  pole_o,          // {c, b, a} modulator states before dead time
@@ -171,7 +177,8 @@ module svpwm_core #(
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
-  logic [DtWidth-1:0] dt_cfg_q, mp_cfg_q;
+  logic [DtWidth-1:0] dt_cfg_q, dtf_cfg_q, mp_cfg_q;   // dtf_cfg_q: the falling dead time, dtf_en_i resolved
+  logic [DtWidth-1:0] dtx_cfg_q;                       // max(dt, dtf): registered beside them (timing)
   logic               cbc_q, safe_lo_q;
   logic [1:0]         pol_q;
 
@@ -179,6 +186,9 @@ module svpwm_core #(
     if (!rst_ni) begin
       locked_q  <= 1'b0;
       dt_cfg_q  <= '0;
+      dtf_cfg_q <= '0;
+      dtx_cfg_q <= '0;
+      dfg_cfg_q <= 1'b0;
       mp_cfg_q  <= '0;
       cbc_q     <= 1'b0;
       safe_lo_q <= 1'b0;
@@ -187,6 +197,9 @@ module svpwm_core #(
       if (lock_i) locked_q <= 1'b1;
       if (!locked_q) begin
         dt_cfg_q  <= dt_i;
+        dtf_cfg_q <= dtf_en_i ? dtf_i : dt_i;
+        dtx_cfg_q <= (dtf_en_i && dtf_i > dt_i) ? dtf_i : dt_i;
+        dfg_cfg_q <= dtf_en_i && dtf_i > dt_i;
         mp_cfg_q  <= mp_i;
         cbc_q     <= trip_cbc_i;
         safe_lo_q <= safe_lo_i;
@@ -195,29 +208,51 @@ module svpwm_core #(
     end
   end
 
+  // ---- the falling dead time travels beside dt through every stage (configuration, use, next, active),
+  // so both change together at a valley, and so does "dtf > dt" (dfg_*), which selects the larger one
+  // for the calculator's minimum-pulse threshold thr = max(dt, dtf) + mp: a 10-bit compare in front of
+  // that adder would not meet 48 MHz on the UP5K, and a registered max or thr at every stage adds 30
+  // flip-flops to the enables the run register drives (the board's slowest path). The compact core has
+  // one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not built)
+  // and its calculator reads dt_next_q + mp_next_q.
+  logic [DtWidth-1:0] dtf_cfg, dtx_cfg, dtf_act;
+  logic [DtWidth-1:0] dtf_use_q, dtf_next_d, dtf_next_q, dtf_d, dtf_q;
+  logic [DtWidth-1:0] dt_use_q, dt_next_q, dt_q;
+  logic               dfg_cfg_q, dfg_use_q, dfg_next_d, dfg_next_q, dfg_d, dfg_q;   // dtf > dt
+  logic [DtWidth-1:0] calc_dtx;
+  logic [DtWidth-1:0] calc_mp;
+
+  assign dtf_cfg  = Compact ? dt_q      : dtf_cfg_q;   // compact: = dtf_act, so no dtf compare (dtf_ne 0)
+  assign dtx_cfg  = Compact ? dt_cfg_q  : dtx_cfg_q;
+  assign dtf_act  = Compact ? dt_q      : dtf_q;
+
   // ---- input clamps (bad input gets the nearest legal value and a flag) --------------------------
   logic [CntWidth-1:0]         period_clamped, period_low;
-  logic [DtWidth:0]            thr;             // dead time + minimum pulse
+  logic [DtWidth:0]            thr;             // max(dt, dtf) + minimum pulse
   logic signed [FreqWidth-1:0] freq_clamped;
   logic                        period_under, freq_over;
 
-  assign thr            = {1'b0, dt_cfg_q} + {1'b0, mp_cfg_q};
+  assign thr            = {1'b0, dtx_cfg} + {1'b0, mp_cfg_q};
   assign period_low     = (CntWidth'({thr, 1'b0}) > CntWidth'(MinPeriod)) ? CntWidth'({thr, 1'b0})
                                                                         : CntWidth'(MinPeriod);
 
   // the lowest legal period is registered (off the sampling paths); dt / mp are used one clock later
   // too (dt_use_q / mp_use_q), so a period is always clamped for the dead time it is used with
   logic [CntWidth-1:0] period_low_q;
-  logic [DtWidth-1:0]  dt_use_q, mp_use_q;
+  logic [DtWidth-1:0]  mp_use_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       period_low_q <= CntWidth'(MinPeriod);
       dt_use_q     <= '0;
+      dtf_use_q    <= '0;
+      dfg_use_q    <= 1'b0;
       mp_use_q     <= '0;
     end else begin
       period_low_q <= period_low;
       dt_use_q     <= dt_cfg_q;
+      dtf_use_q    <= dtf_cfg_q;
+      dfg_use_q    <= dfg_cfg_q;
       mp_use_q     <= mp_cfg_q;
     end
   end
@@ -237,13 +272,20 @@ module svpwm_core #(
   logic                up, valley, peak, pre_peak, load;
 
   logic [CntWidth-1:0] period_next_d, period_next_q;
-  logic [DtWidth-1:0]  dt_next_d, dt_next_q, dt_d, dt_q, mp_next_d, mp_next_q, mp_d, mp_q;
+  logic [DtWidth-1:0]  dt_next_d, dt_d, mp_next_d, mp_next_q, mp_d, mp_q;
 
   // the clamped period is registered too (one clock after the port), and so is the comparison that forces
   // an update (valid in every clock but the one after a load, i.e. at every sample point): the sample
   // strobes then reach the ~150 register enables they drive straight from flip-flops
   logic [CntWidth-1:0] period_clamped_q;
   logic                period_under_q, ne_pin_q, ne_low_q, dtmp_chg_q, chg;
+  // one compare per field, kept, then their OR: 4 LUT levels for the 60 bits (ABC made 7 of the flat
+  // expression on the UP5K, the core's slowest path after the calculator's)
+  (* keep *) logic     dt_ne, dtf_ne, mp_ne;
+
+  assign dt_ne  = dt_cfg_q != dt_q;
+  assign dtf_ne = dtf_cfg != dtf_act;
+  assign mp_ne  = mp_cfg_q != mp_q;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -257,12 +299,13 @@ module svpwm_core #(
       period_under_q   <= period_under;
       ne_pin_q         <= period_i != period_act;
       ne_low_q         <= period_low_q != period_act;
-      dtmp_chg_q       <= dt_cfg_q != dt_q || mp_cfg_q != mp_q;
+      dtmp_chg_q       <= dt_ne || dtf_ne || mp_ne;
     end
   end
 
-  // == (period_clamped_q != period_act || dt_use_q != dt_q || mp_use_q != mp_q): the three compares are
-  // registered side by side (the period one for both sides of the clamp), the clamp's choice after them
+  // == (period_clamped_q != period_act || dt_use_q != dt_q || dtf_use_q != dtf_act || mp_use_q != mp_q): the
+  // compares are registered side by side (the period one for both sides of the clamp), the clamp's choice
+  // after them
   assign chg = (period_under_q ? ne_low_q : ne_pin_q) || dtmp_chg_q;
 
   logic signed [FreqWidth-1:0] freq_d, freq_q;
@@ -413,7 +456,7 @@ module svpwm_core #(
   logic                  duty_busy, duty_sat, duty_err;
   logic [CntWidth-1:0]   calc_period_d, calc_period_q;
   logic [DtWidth:0]      calc_thr_d, calc_thr_q;
-  logic [DtWidth-1:0]    calc_hdr_d, calc_hdr_q, calc_hdf_d, calc_hdf_q, hd_dt;
+  logic [DtWidth-1:0]    calc_hdr_d, calc_hdr_q, calc_hdf_d, calc_hdf_q, hd_dt, hd_dtf;
   // volt-second carry (fixed.snap_carry): per phase what the minimum-pulse rule dropped or widened at the
   // last update (car_q, for the period car_per_q), given to the next computation for the same period; cleared
   // while stopped or tripped, and not given across a period change
@@ -424,12 +467,18 @@ module svpwm_core #(
   logic                  car_ok_d, car_ok_q;
   logic [1:0]            take_q;               // take, one and two clocks before
 
-  // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the dead time the
-  // update is computed for, 0 when off
-  assign hd_dt = ev_valley_q ? dt_next_q : dt_q;
+  // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the rising
+  // (hdr: a positive current loses it) and the falling (hdf: a negative one gains it) dead time the update is
+  // computed for, 0 when off
+  assign hd_dt  = ev_valley_q ? dt_next_q : dt_q;
+  assign hd_dtf = ev_valley_q ? dtf_next_q : dtf_q;
 
   // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
-  // dead time it comes with; a peak update for the active period and dead time
+  // dead time it comes with; a peak update for the active period and dead time (the larger of dt, dtf
+  // by the registered flag: one mux level before the adder)
+  assign calc_dtx = ev_valley_q ? (dfg_next_q ? dtf_next_q : dt_next_q) : (dfg_q ? dtf_q : dt_q);
+  assign calc_mp  = ev_valley_q ? mp_next_q : mp_q;
+
   always_comb begin
     calc_period_d = calc_period_q;
     calc_thr_d    = calc_thr_q;
@@ -438,9 +487,9 @@ module svpwm_core #(
     car_ok_d      = car_ok_q;
     if (start_q) begin
       calc_period_d = ev_valley_q ? period_next_q : period_act;
-      calc_thr_d    = ev_valley_q ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : {1'b0, dt_q} + {1'b0, mp_q};
+      calc_thr_d    = {1'b0, calc_dtx} + {1'b0, calc_mp};
       calc_hdr_d    = dtc_q ? DtWidth'(({1'b0, hd_dt} + 1'b1) >> 1) : '0;
-      calc_hdf_d    = calc_hdr_d;
+      calc_hdf_d    = dtc_q ? DtWidth'(({1'b0, hd_dtf} + 1'b1) >> 1) : '0;
       car_ok_d      = vsc_q && calc_period_d == car_per_q;
     end
   end
@@ -503,10 +552,14 @@ module svpwm_core #(
     freq_d         = freq_q;
     period_next_d  = period_next_q;
     dt_next_d      = dt_next_q;
+    dtf_next_d     = dtf_next_q;
+    dfg_next_d     = dfg_next_q;
     mp_next_d      = mp_next_q;
     period_clamp_d = period_clamp_q;
     freq_clamp_d   = freq_clamp_q;
     dt_d           = dt_q;
+    dtf_d          = dtf_q;
+    dfg_d          = dfg_q;
     mp_d           = mp_q;
     cmp_d          = cmp_q;
     sector_d       = sector_q;
@@ -524,19 +577,25 @@ module svpwm_core #(
     if (!run || vps) begin                // period, dead time, minimum pulse: before every valley
       period_next_d  = period_clamped_q;
       dt_next_d      = dt_use_q;
+      dtf_next_d     = dtf_use_q;
+      dfg_next_d     = dfg_use_q;
       mp_next_d      = mp_use_q;
       period_clamp_d = period_under_q;
     end
     if (start_q) pending_d = 1'b1;
     if (!run) begin                        // idle: nothing valid, dead time follows the configuration
       dt_d      = dt_use_q;
+      dtf_d     = dtf_use_q;
+      dfg_d     = dfg_use_q;
       mp_d      = mp_use_q;
       valid_d   = 1'b0;
       pending_d = 1'b0;
     end else begin
       if (load) begin                      // valley: period (in the carrier), dead time, minimum pulse
-        dt_d = dt_next_q;
-        mp_d = mp_next_q;
+        dt_d  = dt_next_q;
+        dtf_d = dtf_next_q;
+        dfg_d = dfg_next_q;
+        mp_d  = mp_next_q;
       end
       if (take) begin                      // update point: all three phases together
         cmp_d     = snap_cmp;
@@ -580,10 +639,14 @@ module svpwm_core #(
       freq_q         <= '0;
       period_next_q  <= CntWidth'(MinPeriod);
       dt_next_q      <= '0;
+      dtf_next_q     <= '0;
+      dfg_next_q     <= 1'b0;
       mp_next_q      <= '0;
       period_clamp_q <= 1'b0;
       freq_clamp_q   <= 1'b0;
       dt_q           <= '0;
+      dtf_q          <= '0;
+      dfg_q          <= 1'b0;
       mp_q           <= '0;
       cmp_q          <= '0;
       sector_q       <= '0;
@@ -615,10 +678,14 @@ module svpwm_core #(
       freq_q         <= freq_d;
       period_next_q  <= period_next_d;
       dt_next_q      <= dt_next_d;
+      dtf_next_q     <= dtf_next_d;
+      dfg_next_q     <= dfg_next_d;
       mp_next_q      <= mp_next_d;
       period_clamp_q <= period_clamp_d;
       freq_clamp_q   <= freq_clamp_d;
       dt_q           <= dt_d;
+      dtf_q          <= dtf_d;
+      dfg_q          <= dfg_d;
       mp_q           <= mp_d;
       cmp_q          <= cmp_d;
       sector_q       <= sector_d;
@@ -656,8 +723,9 @@ module svpwm_core #(
       .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run: formal)
       .brake_i (brake),
       .pole_i  (pole[ph]),
-      .dt_i    (dt_q),              // deadtime reads them a clock ahead: a new dead time and minimum
-      .mp_i    (mp_q),              // pulse act on the gates from the clock after the valley
+      .dt_i    (dt_q),              // deadtime reads them a clock ahead: new dead times and minimum
+      .dtf_i   (dtf_act),           // pulse act on the gates from the clock after the valley
+      .mp_i    (mp_q),
       .hi_o    (hi_req[ph]),
       .lo_o    (lo_req[ph])
     );
@@ -736,7 +804,7 @@ module svpwm_core #(
   always_comb if (rst_ni) assert (period_next_q >= CntWidth'(MinPeriod));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
     if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run));
-    if (dt_q != $past(dt_q) || mp_q != $past(mp_q)) assert ($past(load));
+    if (dt_q != $past(dt_q) || dtf_act != $past(dtf_act) || mp_q != $past(mp_q)) assert ($past(load));
   end
   // the compact calculator reads period_next_q / dt_next_q + mp_next_q at its start: only valley updates
   // (the update mode stays "valley", so every computation starts from a valley sample)
@@ -747,11 +815,28 @@ module svpwm_core #(
   always_comb if (rst_ni && pole_valid) assert (run);
   // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
-    assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && mp_cfg_q == $past(mp_cfg_q)
+    assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && dtf_cfg_q == $past(dtf_cfg_q) && mp_cfg_q == $past(mp_cfg_q)
             && pol_q == $past(pol_q) && safe_lo_q == $past(safe_lo_q) && cbc_q == $past(cbc_q));
   // not vacuous: gates switch, trips happen and release, compare values load
   always_comb cover (rst_ni && f_hi[0] && running_o);
   always_comb cover (rst_ni && f_lo[1] && running_o && dt_q > DtWidth'(2));
+  // asymmetric dead times in force and gates switching (the full core; the compact one has one dead time);
+  // the registered max(dt, dtf) and thresholds are those of the dead times beside them
+  if (!Compact) begin : gen_f_dtf
+    function automatic logic [DtWidth:0] f_thr(input logic [DtWidth-1:0] dt, input logic [DtWidth-1:0] dtf,
+                                               input logic [DtWidth-1:0] mp);
+      f_thr = {1'b0, (dt >= dtf) ? dt : dtf} + {1'b0, mp};
+    endfunction
+    always_comb if (rst_ni) begin
+      assert (dtx_cfg_q == ((dt_cfg_q >= dtf_cfg_q) ? dt_cfg_q : dtf_cfg_q));
+      assert (dfg_cfg_q == (dtf_cfg_q > dt_cfg_q) && dfg_use_q == (dtf_use_q > dt_use_q));
+      assert (dfg_next_q == (dtf_next_q > dt_next_q) && dfg_q == (dtf_q > dt_q));
+      if (start_q) assert (calc_thr_d == f_thr(ev_valley_q ? dt_next_q : dt_q, ev_valley_q ? dtf_next_q : dtf_q,
+                                               ev_valley_q ? mp_next_q : mp_q));
+    end
+    always_comb cover (rst_ni && f_hi[2] && running_o && dt_q > DtWidth'(1) && dtf_q > dt_q && locked_q);
+    always_comb cover (rst_ni && f_lo[0] && running_o && dtf_q > DtWidth'(1) && dt_q > dtf_q);
+  end
   always_ff @(posedge clk_i) cover (f_past_valid && $past(tripped_o) && !tripped_o && running_o);
   always_ff @(posedge clk_i) cover (f_past_valid && rst_ni && cmp_q != $past(cmp_q) && locked_q);
 `endif

@@ -80,7 +80,8 @@ module svpwm_mmio #(
   logic [PeriodBits-1:0]       period;
   logic [CntWidth-1:0]         period_core, carrier, period_act;
   logic                        period_over, period_clamp_core;
-  logic [DtWidth-1:0]          dt, mp;
+  logic [DtWidth-1:0]          dt, dtf, mp;
+  logic                        dtf_en;
   logic [7:0]                  presc;
   logic                        carrier_up, sat, cfg_err, period_clamp, freq_clamp, fault, locked;
   logic [2:0]                  sector;
@@ -104,7 +105,8 @@ module svpwm_mmio #(
     .ctrl_upd_o (upd), .ctrl_dpwm_o (dpwm), .ctrl_om_o (om), .ctrl_vsc_off_o (vsc_off), .ctrl_adc_trig_o (adc_trig),
     .freq_o (freq), .m_o (m), .theta_o (theta), .v1_o (v1), .v2_o (v2),
     .vf_boost_o (vf_boost), .vf_slope_o (vf_slope), .vf_mmax_o (vf_mmax),
-    .period_o (period), .dt_o (dt), .mp_o (mp), .presc_o (presc), .dtc_en_o (dtc_en), .dtc_isign_o (isign),
+    .period_o (period), .dt_dt_o (dt), .dt_dtf_o (dtf), .dt_dtf_en_o (dtf_en), .mp_o (mp),
+    .presc_o (presc), .dtc_en_o (dtc_en), .dtc_isign_o (isign),
     .status_running_i (running_o), .status_sat_i (sat), .status_cfg_err_i (cfg_err),
     .status_period_clamp_i (period_clamp), .status_freq_clamp_i (freq_clamp), .status_fault_i (fault),
     .status_tripped_i (tripped_o), .status_locked_i (locked), .status_sector_i (sector),
@@ -130,9 +132,9 @@ module svpwm_mmio #(
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
-    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_en_i (!vsc_off), .upd_i (upd), .presc_i (presc), .period_i (period_core),
-    .dt_i (dt), .mp_i (mp), .dtc_en_i (dtc_en), .isign_i (isign), .adc_trig_i (adc_trig),
-    .sync_en_i (sync_en), .sync_i (sync_i),
+    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_en_i (!vsc_off), .upd_i (upd), .presc_i (presc),
+    .period_i (period_core), .dt_i (dt), .dtf_i (dtf), .dtf_en_i (dtf_en), .mp_i (mp), .dtc_en_i (dtc_en),
+    .isign_i (isign), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
     .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),
     .pol_i (pol), .lock_i (lock),
     .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o), .carrier_o (carrier),

@@ -67,7 +67,9 @@ module svpwm_regs #(
   output logic [15:0]  vf_slope_o,             // VF_SLOPE.vf_slope: RW (not in the compact variant)
   output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW (not in the compact variant)
   output logic [15:0]  period_o,               // PERIOD.period: RW
-  output logic [9:0]   dt_o,                   // DT.dt: RW
+  output logic [9:0]   dt_dt_o,                // DT.dt: RW
+  output logic [9:0]   dt_dtf_o,               // DT.dtf: RW (not in the compact variant)
+  output logic         dt_dtf_en_o,            // DT.dtf_en: RW (not in the compact variant)
   output logic [9:0]   mp_o,                   // MP.mp: RW (not in the compact variant)
   output logic [7:0]   presc_o,                // PRESC.presc: RW (not in the compact variant)
   input  logic         status_running_i,       // STATUS.running: RO (live)
@@ -227,7 +229,7 @@ module svpwm_regs #(
   logic [23:0]  freq_d, freq_q, freq_wr;
   logic [15:0]  m_d, m_q, m_wr;
   logic [15:0]  period_d, period_q, period_wr;
-  logic [9:0]   dt_d, dt_q, dt_wr;
+  logic [9:0]   dt_dt_d, dt_dt_q, dt_dt_wr;
   assign ctrl_en_wr = be_i[0] ? wdata_i[0] : ctrl_en_q;
   assign ctrl_trip_cbc_wr = be_i[0] ? wdata_i[2] : ctrl_trip_cbc_q;
   assign ctrl_safe_lo_wr = be_i[0] ? wdata_i[3] : ctrl_safe_lo_q;
@@ -237,7 +239,7 @@ module svpwm_regs #(
   assign freq_wr = {(be_i[2] ? wdata_i[23:16] : freq_q[23:16]), (be_i[1] ? wdata_i[15:8] : freq_q[15:8]), (be_i[0] ? wdata_i[7:0] : freq_q[7:0])};
   assign m_wr = {(be_i[1] ? wdata_i[15:8] : m_q[15:8]), (be_i[0] ? wdata_i[7:0] : m_q[7:0])};
   assign period_wr = {(be_i[1] ? wdata_i[15:8] : period_q[15:8]), (be_i[0] ? wdata_i[7:0] : period_q[7:0])};
-  assign dt_wr = {(be_i[1] ? wdata_i[9:8] : dt_q[9:8]), (be_i[0] ? wdata_i[7:0] : dt_q[7:0])};
+  assign dt_dt_wr = {(be_i[1] ? wdata_i[9:8] : dt_dt_q[9:8]), (be_i[0] ? wdata_i[7:0] : dt_dt_q[7:0])};
 
   always_comb begin
     ctrl_en_d = ctrl_en_q;
@@ -249,7 +251,7 @@ module svpwm_regs #(
     freq_d = freq_q;
     m_d = m_q;
     period_d = period_q;
-    dt_d = dt_q;
+    dt_dt_d = dt_dt_q;
     if (wr && sel[SelCtrl]) begin
       ctrl_en_d = ctrl_en_wr;
       ctrl_trip_cbc_d = ctrl_trip_cbc_wr;
@@ -268,7 +270,7 @@ module svpwm_regs #(
       period_d = period_wr;
     end
     if (wr && sel[SelDt]) begin
-      dt_d = dt_wr;
+      dt_dt_d = dt_dt_wr;
     end
   end
 
@@ -283,7 +285,7 @@ module svpwm_regs #(
       freq_q <= 24'h0;
       m_q <= 16'h0;
       period_q <= 16'h600;
-      dt_q <= 10'h0;
+      dt_dt_q <= 10'h0;
     end else begin
       ctrl_en_q <= ctrl_en_d;
       ctrl_trip_cbc_q <= ctrl_trip_cbc_d;
@@ -294,7 +296,7 @@ module svpwm_regs #(
       freq_q <= freq_d;
       m_q <= m_d;
       period_q <= period_d;
-      dt_q <= dt_d;
+      dt_dt_q <= dt_dt_d;
     end
   end
 
@@ -312,6 +314,8 @@ module svpwm_regs #(
   logic [15:0]  vf_boost_q;
   logic [15:0]  vf_slope_q;
   logic [15:0]  vf_mmax_q;
+  logic [9:0]   dt_dtf_q;
+  logic         dt_dtf_en_q;
   logic [9:0]   mp_q;
   logic [7:0]   presc_q;
   logic         dtc_en_q;
@@ -330,6 +334,8 @@ module svpwm_regs #(
     logic [15:0]  vf_boost_d, vf_boost_wr;
     logic [15:0]  vf_slope_d, vf_slope_wr;
     logic [15:0]  vf_mmax_d, vf_mmax_wr;
+    logic [9:0]   dt_dtf_d, dt_dtf_wr;
+    logic         dt_dtf_en_d, dt_dtf_en_wr;
     logic [9:0]   mp_d, mp_wr;
     logic [7:0]   presc_d, presc_wr;
     logic         dtc_en_d, dtc_en_wr;
@@ -347,6 +353,8 @@ module svpwm_regs #(
     assign vf_boost_wr = {(be_i[1] ? wdata_i[15:8] : vf_boost_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_boost_q[7:0])};
     assign vf_slope_wr = {(be_i[1] ? wdata_i[15:8] : vf_slope_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_slope_q[7:0])};
     assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
+    assign dt_dtf_wr = {(be_i[3] ? wdata_i[25:24] : dt_dtf_q[9:8]), (be_i[2] ? wdata_i[23:16] : dt_dtf_q[7:0])};
+    assign dt_dtf_en_wr = be_i[3] ? wdata_i[31] : dt_dtf_en_q;
     assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
     assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
     assign dtc_en_wr = be_i[0] ? wdata_i[0] : dtc_en_q;
@@ -366,6 +374,8 @@ module svpwm_regs #(
       vf_boost_d = vf_boost_q;
       vf_slope_d = vf_slope_q;
       vf_mmax_d = vf_mmax_q;
+      dt_dtf_d = dt_dtf_q;
+      dt_dtf_en_d = dt_dtf_en_q;
       mp_d = mp_q;
       presc_d = presc_q;
       dtc_en_d = dtc_en_q;
@@ -397,6 +407,10 @@ module svpwm_regs #(
       if (wr && sel[SelVfMmax]) begin
         vf_mmax_d = vf_mmax_wr;
       end
+      if (wr && sel[SelDt]) begin
+        dt_dtf_d = dt_dtf_wr;
+        dt_dtf_en_d = dt_dtf_en_wr;
+      end
       if (wr && sel[SelMp]) begin
         mp_d = mp_wr;
       end
@@ -424,6 +438,8 @@ module svpwm_regs #(
         vf_boost_q <= 16'h0;
         vf_slope_q <= 16'h0;
         vf_mmax_q <= 16'h0;
+        dt_dtf_q <= 10'h0;
+        dt_dtf_en_q <= 1'h0;
         mp_q <= 10'h0;
         presc_q <= 8'h0;
         dtc_en_q <= 1'h0;
@@ -442,6 +458,8 @@ module svpwm_regs #(
         vf_boost_q <= vf_boost_d;
         vf_slope_q <= vf_slope_d;
         vf_mmax_q <= vf_mmax_d;
+        dt_dtf_q <= dt_dtf_d;
+        dt_dtf_en_q <= dt_dtf_en_d;
         mp_q <= mp_d;
         presc_q <= presc_d;
         dtc_en_q <= dtc_en_d;
@@ -462,13 +480,15 @@ module svpwm_regs #(
     assign vf_boost_q = 16'h0;
     assign vf_slope_q = 16'h0;
     assign vf_mmax_q = 16'h0;
+    assign dt_dtf_q = 10'h0;
+    assign dt_dtf_en_q = 1'h0;
     assign mp_q = 10'h0;
     assign presc_q = 8'h0;
     assign dtc_en_q = 1'h0;
     assign dtc_isign_q = 3'h0;
     // live inputs and data bits only the full variant reads
     logic unused_compact;
-    assign unused_compact = ^{carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i};
+    assign unused_compact = ^{carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i, wdata_i[25:24], wdata_i[31], be_i[3]};
   end
 
   // ---- read data: the word of each register, registered, held until the next read ----------
@@ -499,7 +519,7 @@ module svpwm_regs #(
   logic [31:0] rd_period;
   assign rd_period = {16'h0, period_q};
   logic [31:0] rd_dt;
-  assign rd_dt = {22'h0, dt_q};
+  assign rd_dt = {dt_dtf_en_q, 5'h0, dt_dtf_q, 6'h0, dt_dt_q};
   logic [31:0] rd_mp;
   assign rd_mp = Compact ? 32'h0 : {22'h0, mp_q};
   logic [31:0] rd_presc;
@@ -598,7 +618,9 @@ module svpwm_regs #(
   assign vf_slope_o = vf_slope_q;
   assign vf_mmax_o = vf_mmax_q;
   assign period_o = period_q;
-  assign dt_o = dt_q;
+  assign dt_dt_o = dt_dt_q;
+  assign dt_dtf_o = dt_dtf_q;
+  assign dt_dtf_en_o = dt_dtf_en_q;
   assign mp_o = mp_q;
   assign presc_o = presc_q;
   assign dtc_en_o = dtc_en_q;
@@ -606,7 +628,7 @@ module svpwm_regs #(
 
   // data bits no writable field uses; the byte offset within a word
   logic unused_bits;
-  assign unused_bits = ^{wdata_i[31:24], be_i[3], addr_i[1:0]};
+  assign unused_bits = ^{wdata_i[30:26], addr_i[1:0]};
 
 endmodule
 

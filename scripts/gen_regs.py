@@ -316,6 +316,8 @@ def render_sv(regs: list[Reg], size: int) -> str:
     unused_w = [b for b in range(DATA_WIDTH) if b not in used_wbits]
     both_wbits = {b for r, f in both for b in range(f.lsb, f.msb + 1)}
     unused_compact_w = [b for b in used_wbits if b not in both_wbits]
+    # byte lanes only fields of the full variant write (their be_i bit is unread in the compact one)
+    unused_compact_lanes = sorted({b // 8 for b in used_wbits} - {b // 8 for b in both_wbits})
     pw = max(len(_port(r, f)) for r in regs for f in r.fields if f.kind != "const")
 
     def vec(w: int) -> str:
@@ -487,6 +489,7 @@ def render_sv(regs: list[Reg], size: int) -> str:
         for r, f in full:
             L.append(f"    assign {sig(r, f)}_q = {f.width}'h0;")
         unread = [_port(r, f) for r, f in absent_in] + _bit_ranges(unused_compact_w, ("wdata_i",))
+        unread += [f"be_i[{k}]" for k in unused_compact_lanes]
         if unread:
             L += ["    // live inputs and data bits only the full variant reads",
                   "    logic unused_compact;", f"    assign unused_compact = ^{{{', '.join(unread)}}};"]

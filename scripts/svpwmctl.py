@@ -15,6 +15,7 @@ registers and fields it does not have (docs/registers.md, column compact) are re
 Examples:
   svpwmctl.py -p /dev/ttyUSB1 status
   svpwmctl.py -p /dev/ttyUSB1 set-dt 1.0 ; svpwmctl.py -p /dev/ttyUSB1 set-period --fsw 20000
+  svpwmctl.py -p /dev/ttyUSB1 set-dt 0.5 --dt-fall 0.8   (rising / falling dead times, the full variant)
   svpwmctl.py -p /dev/ttyUSB1 set-freq 50 ; svpwmctl.py -p /dev/ttyUSB1 set-m 0.9 ; ... start
   svpwmctl.py -p /dev/ttyUSB1 read CTRL.mode ; svpwmctl.py -p /dev/ttyUSB1 write VF_MMAX 0x8000
 The port can also be given as $SVPWM_PORT. `svpwmctl.py COMMAND --help` for each command.
@@ -302,6 +303,7 @@ class Board:
         v = {r.name: self.read(r.addr) for r in R.variant(compact) if r.name not in ("ID", "VERSION", "CONFIG")}
         st, ctrl = R.STATUS.decode(v["STATUS"]), R.CTRL.decode(v["CTRL"])
         freq = R.FREQ.decode(v["FREQ"])["freq"]
+        dt, dtf = dead_times(R.DT.decode(v["DT"]))
         out: dict[str, object] = {k: st[k] for k in ("running", "tripped", "fault", "sat", "cfg_err",
                                                       "period_clamp", "freq_clamp", "locked", "sector")}
         out.update({
@@ -314,7 +316,8 @@ class Board:
             "m": _fmt(Fraction(v["M"], 0x8000)), "m_word": v["M"],
             "fsw_hz": _fmt(cfg.fsw_hz(v["PERIOD"]), 8) if v["PERIOD"] else "-", "period_clocks": v["PERIOD"],
             "period_act_clocks": v.get("PERIOD_ACT", "-"),          # not in the compact variant
-            "dt_us": _fmt(cfg.us(v["DT"])), "dt_clocks": v["DT"],
+            "dt_us": _fmt(cfg.us(dt)), "dt_clocks": dt,
+            "dt_fall_us": _fmt(cfg.us(dtf)), "dt_fall_clocks": dtf,                  # = dt unless DT.dtf_en
             "mp_us": _fmt(cfg.us(v["MP"])) if "MP" in v else "-", "mp_clocks": v.get("MP", "-"),  # not compact
             "clk_hz": cfg.clk_hz,
         })
@@ -374,8 +377,12 @@ def build_parser() -> argparse.ArgumentParser:
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--fsw", help="switching (carrier) frequency in Hz: PERIOD = f_clk / (2 f_sw), rounded")
     g.add_argument("--clocks", help="half carrier period in core clocks")
-    p = add("set-dt", "dead time in microseconds (rounded to clocks)")
+    p = add("set-dt", "dead time in microseconds (rounded to clocks): the rising one (a high side after its low "
+                      "side turned off) and, without --dt-fall, the falling one too")
     p.add_argument("us")
+    p.add_argument("--dt-fall", metavar="US",
+                   help="a separate falling dead time in microseconds (a low side after its high side turned "
+                        "off; DT.dtf with DT.dtf_en = 1): gate drivers whose turn-off delays differ. Full variant")
     p = add("set-mp", "minimum gate pulse in microseconds (rounded to clocks)")
     p.add_argument("us")
     p = add("set-mode", "input mode (CTRL.mode) and optionally the modulation (CTRL.dpwm) and load point (CTRL.upd)")
@@ -392,6 +399,13 @@ def build_parser() -> argparse.ArgumentParser:
     return ap
 
 
+def dead_times(dt_fields: dict[str, int]) -> tuple[int, int]:
+    """(rising, falling) dead time in clocks from the decoded DT register: the falling one is DT.dtf when
+    DT.dtf_en is 1, else DT.dt (the compact variant reads dtf_en 0)."""
+    dt = dt_fields["dt"]
+    return dt, (dt_fields["dtf"] if dt_fields.get("dtf_en") else dt)
+
+
 def _locked_check(board: Board, what: str) -> None:
     if board.read_reg(R.STATUS)["locked"]:
         raise ValueError(f"{what} is locked (STATUS.locked, CTRL.lock) until the board is reset")
@@ -399,12 +413,12 @@ def _locked_check(board: Board, what: str) -> None:
 
 def _period_check(board: Board, cfg: Config, p: int) -> None:
     top = (1 << cfg.cnt_width) - 1
-    dt, mp = board.read(R.DT.addr), board.read(R.MP.addr)
+    dtx, mp = max(dead_times(board.read_reg(R.DT))), board.read(R.MP.addr)
     min_period = MIN_PERIOD_COMPACT if board.compact() else MIN_PERIOD
-    low = max(min_period, 2 * (dt + mp))
+    low = max(min_period, 2 * (dtx + mp))
     if not low <= p <= top:
         raise ValueError(f"half period {p} clocks is out of range {low} .. {top} (MinPeriod {min_period}, "
-                         f"2 (DT + MP) = {2 * (dt + mp)}; f_sw {_fmt(cfg.fsw_hz(top))} .. "
+                         f"2 (max(dt, dtf) + MP) = {2 * (dtx + mp)}; f_sw {_fmt(cfg.fsw_hz(top))} .. "
                          f"{_fmt(cfg.fsw_hz(low))} Hz)")
 
 
@@ -446,8 +460,10 @@ def run(args, board: Board) -> str:
     if c == "status":
         return "\n".join(f"{k:18} {v}" for k, v in board.status().items())
     if c == "start":
-        if board.read(R.DT.addr) == 0 and not args.allow_zero_dt:
-            raise ValueError("DT is 0 (no dead time between the gates of a leg): set-dt first "
+        dt, dtf = dead_times(board.read_reg(R.DT))
+        if 0 in (dt, dtf) and not args.allow_zero_dt:
+            what = "DT" if dt == 0 else "the falling dead time DT.dtf (DT.dtf_en = 1)"
+            raise ValueError(f"{what} is 0 (no dead time between the gates of a leg): set-dt first "
                              "(or --allow-zero-dt without a power stage)")
         board.write_fields(R.CTRL, en=1)
         return "started"
@@ -500,16 +516,33 @@ def run(args, board: Board) -> str:
         return f"PERIOD = {p} clocks (f_sw {_fmt(cfg.fsw_hz(p), 8)} Hz)"
     if c in ("set-dt", "set-mp"):
         reg, what = (R.DT, "dead time") if c == "set-dt" else (R.MP, "minimum pulse")
-        board.check_present(reg, reg.mask())          # the compact variant has no MP
+        fall = getattr(args, "dt_fall", None)
+        board.check_present(reg, reg.fields[0].mask)  # the compact variant has no MP
+        if fall is not None:                          # ... and no DT.dtf / dtf_en
+            board.check_present(R.DT, R.DT.field("dtf").mask | R.DT.field("dtf_en").mask)
         n = cfg.clocks(parse_num(args.us), what)
+        nf = cfg.clocks(parse_num(fall), "falling dead time") if fall is not None else None
         _locked_check(board, what)
         period = board.read(R.PERIOD.addr)
-        other = board.read((R.MP if reg is R.DT else R.DT).addr)
-        if period < 2 * (n + other):
-            raise ValueError(f"{what} {n} clocks needs PERIOD >= 2 (DT + MP) = {2 * (n + other)}, "
+        if reg is R.DT:
+            dtx, mp = max(n, n if nf is None else nf), board.read(R.MP.addr) if not board.compact() else 0
+        else:
+            dtx, mp = max(dead_times(board.read_reg(R.DT))), n
+        if period < 2 * (dtx + mp):
+            raise ValueError(f"{what} {n} clocks needs PERIOD >= 2 (max(dt, dtf) + MP) = {2 * (dtx + mp)}, "
                              f"PERIOD is {period}: lengthen the period first")
-        board.write_fields(reg, **{reg.fields[0].name: n})
-        return f"{reg.name} = {n} clocks ({_fmt(cfg.us(n))} us)"
+        if reg is R.MP:
+            board.write_fields(R.MP, mp=n)
+            return f"MP = {n} clocks ({_fmt(cfg.us(n))} us)"
+        if board.compact():                           # one dead time for both edges
+            board.write_fields(R.DT, dt=n)
+            return f"DT = {n} clocks ({_fmt(cfg.us(n))} us)"
+        # the full variant: both edges written (without --dt-fall the falling one is DT, dtf_en = 0)
+        board.write_fields(R.DT, dt=n, dtf=0 if nf is None else nf, dtf_en=int(nf is not None))
+        if nf is None:
+            return f"DT = {n} clocks ({_fmt(cfg.us(n))} us)"
+        return (f"DT = {n} clocks ({_fmt(cfg.us(n))} us) rising, {nf} clocks ({_fmt(cfg.us(nf))} us) falling "
+                f"(DT.dtf, dtf_en = 1)")
     raise SystemExit(f"error: unknown command {c}")
 
 

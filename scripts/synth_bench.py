@@ -39,8 +39,9 @@ def wrapper_cells(params: dict[str, str]) -> int:
     """Logic cells of the wrapper's input shift register: one per core input bit."""
     p = {"CntWidth": 16, "FreqWidth": 24, "DtWidth": 10} | {k: int(v) for k, v in params.items()}
     # svpwm_bench_top NIn: en, freq, m, period, dt, mp, 7 safety bits, then mode 3, theta / v1 / v2 /
-    # vf_boost / vf_slope / vf_mmax 16 each, dpwm 2, upd 2, presc 8, adc_trig 2, sync_en, sync
-    return 1 + p["FreqWidth"] + 16 + p["CntWidth"] + 2 * p["DtWidth"] + 7 + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2
+    # vf_boost / vf_slope / vf_mmax 16 each, dpwm 2, upd 2, presc 8, adc_trig 2, sync_en, sync, dtf, dtf_en
+    return (1 + p["FreqWidth"] + 16 + p["CntWidth"] + 2 * p["DtWidth"] + 7 + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2
+            + p["DtWidth"] + 1)
 
 
 def bench_device(dev: str, seeds: int, freq: float, jobs: int, params: dict[str, str]) -> dict:

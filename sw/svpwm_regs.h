@@ -158,6 +158,14 @@ extern "C" {
 #define SVPWM__DT__DT_bp 0
 #define SVPWM__DT__DT_bw 10
 #define SVPWM__DT__DT_reset 0x0
+#define SVPWM__DT__DTF_bm 0x3ff0000
+#define SVPWM__DT__DTF_bp 16
+#define SVPWM__DT__DTF_bw 10
+#define SVPWM__DT__DTF_reset 0x0
+#define SVPWM__DT__DTF_EN_bm 0x80000000
+#define SVPWM__DT__DTF_EN_bp 31
+#define SVPWM__DT__DTF_EN_bw 1
+#define SVPWM__DT__DTF_EN_reset 0x0
 
 // reg - svpwm::MP
 #define SVPWM__MP__MP_bm 0x3ff

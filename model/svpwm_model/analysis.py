@@ -104,9 +104,14 @@ class LegReport:
 
 def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
     """Gate safety from the edges alone: never both gates of a leg on; a gate turns on only after the
-    other has been off for the dead time in force (dt_at(cycle) for the deciding clock, cycle - 1);
-    every on-pulse lasts at least that dead time unless ended by a forced turn-off (``forced_off``:
-    cycles at which gates were forced off, e.g. a disable)."""
+    other has been off for the dead time in force (dt_at(cycle) for the deciding clock, cycle - 1: one
+    dead time, or a pair (dt, dtf): the high side waits dt, the low side dtf); every on-pulse lasts at
+    least max(dt, dtf) unless ended by a forced turn-off (``forced_off``: cycles at which gates were
+    forced off, e.g. a disable)."""
+    def edge_dts(c: int) -> tuple[int, int]:
+        d = dt_at(c)
+        return (d, d) if isinstance(d, int) else tuple(d)
+
     rep = LegReport()
     forced = set(forced_off)
     for leg in range(3):
@@ -122,7 +127,7 @@ def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
             for g in (0, 1):
                 if cur[g] and not prev[g]:                      # turn-on of gate g
                     other = 1 - g
-                    dt = dt_at(c - 1)
+                    dt = edge_dts(c - 1)[g]
                     if prev[other] and dt != 0:
                         rep.dead_time.append(f"leg {'abc'[leg]}: direct swap at cycle {c} with dt={dt}")
                     elif c - last_off[other] < dt:
@@ -131,7 +136,7 @@ def check_legs(gate_events, dt_at, forced_off: Sequence[int] = ()) -> LegReport:
                 if prev[g] and not cur[g]:                      # turn-off of gate g
                     last_off[g] = c
                     width = c - on_since[g] if on_since[g] is not None else None
-                    if width is not None and width < dt_at(c - 1) and c not in forced:
+                    if width is not None and width < max(edge_dts(c - 1)) and c not in forced:
                         rep.short_pulse.append(f"leg {'abc'[leg]}: {'hl'[g]} pulse {width} < dt at {c}")
             prev = cur
     return rep
@@ -205,7 +210,7 @@ def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0, om: 
     clamped m it used (run.m[n]); with ``om`` = 1 (the six-step law, om_i) ideal_compare_law, the law in
     floating point (the core's g is UQ8.8 and stretches the clamp's rounding by up to g = 217 at m = 0xFFFF:
     above 2/sqrt3 the error is not a calculator rounding bound). The values the core applies are these
-    after the minimum-pulse rule, which moves a value by at most ceil((dt + mp) / 2) counts near duty 0
+    after the minimum-pulse rule, which moves a value by at most ceil((max(dt, dtf) + mp) / 2) counts near duty 0
     and 1 by design; that the applied values are exactly the rule applied to the calculator's (plus the
     volt-second carry the model recorded for that update, Update.carry_in, |carry| <= ceil(thr/2)), within
     that bound, is asserted.
@@ -229,7 +234,7 @@ def duty_error(run, isign: Sequence[int | None] | None = None, hd: int = 0, om: 
             raw[k] = fixed.dwell_compare(int(sector[k]), t1, t2, int(p_i[k]))
     carry_at = {u.load: u.carry_in for u in getattr(run, "updates", ())}   # the update of period i loads at t_i
     for k, i in enumerate(n):
-        thr = run.dt[i] + run.mp[i]
+        thr = max(run.dt[i], run.dtf[i] if run.dtf else run.dt[i]) + run.mp[i]    # max(dt, dtf) + mp
         hthr = (thr + 1) // 2
         sh = tuple(int(c) for c in raw[k])
         if hd and isign is not None:

@@ -12,15 +12,18 @@ Timeline (see README "Timing"):
 * an update at point T samples the reference in the clock S - 1, S = T - SAMPLE_LEAD: the angle used is
   the accumulator at cycle S, the new frequency word steps it from cycle S on; the compare values are
   active from T (a valley update is computed for P_{n+1} and its dead time, a peak update for P_n).
-* before every valley (at S - 1 of the valley sample) period, dead time, minimum pulse, upd and presc are
-  sampled: P_{n+1}, dt_{n+1}, mp_{n+1} are active from t_{n+1}; a changed (P, dt, mp) forces an update
-  at that valley; upd / presc apply to the opportunities after t_{n+1}.
+* before every valley (at S - 1 of the valley sample) period, dead times, minimum pulse, upd and presc are
+  sampled: P_{n+1}, dt_{n+1}, dtf_{n+1}, mp_{n+1} are active from t_{n+1}; a changed (P, dt, dtf, mp)
+  forces an update at that valley; upd / presc apply to the opportunities after t_{n+1}. The calculator's
+  minimum-pulse threshold and the period floor use max(dt, dtf) + mp.
 * ``inputs(n)`` are on the ports during the down half of period n (valley sample), ``peak_inputs(n)``
   (default: inputs(n)) during its up half (peak sample). Period 0 runs with the idle inputs.
 * pole x is high during [t_n + C_up + 1, t_n + P_n + 1) if C_up < P_n and [t_n + P_n + 1,
   t_n + 2 P_n - C_dn + 1) if C_dn < P_n, C_up / C_dn the values active at the valley / the peak.
 * gates: rtl/deadtime.sv per leg (model: deadtime.py), target OFF until the clock after the first update;
-  dt_{n+1} and mp_{n+1} act on the gates from t_{n+1} + 1 (the legs read the core's registers a clock ahead).
+  dt_{n+1}, dtf_{n+1} and mp_{n+1} act on the gates from t_{n+1} + 1 (the legs read the core's registers a
+  clock ahead). dt is the rising dead time (before a high side turns on), dtf the falling one (before a
+  low side); Inputs.dtf = None (dtf_en_i = 0) means dtf = dt. The compact core ignores dtf.
 """
 from __future__ import annotations
 
@@ -38,7 +41,10 @@ class Inputs:
     freq: int = 0           # signed frequency word
     m: int = 0              # UQ1.15 magnitude (freq / polar modes)
     period: int = 1536      # half period, clocks
-    dt: int = 0             # dead time, clocks
+    dt: int = 0             # (rising) dead time, clocks
+    # falling dead time, clocks (dtf_i with dtf_en_i = 1); None: dtf_en_i = 0, the falling dead time is dt.
+    # Keyword-only, so the positional order of the other fields (freq, m, period, dt, mp, ...) is unchanged
+    dtf: int | None = field(default=None, kw_only=True)
     mp: int = 0             # minimum gate pulse, clocks
     mode: int = fixed.MODE_FREQ
     theta: int = 0          # 16-bit electrical angle (polar, dq)
@@ -79,7 +85,8 @@ class Run:
     """Result of CoreModel.run(); arrays are indexed by carrier period n = 0..N-1 unless stated."""
     valley: list[int] = field(default_factory=list)      # t_n, n = 0..N (t_N: the valley after the last)
     period: list[int] = field(default_factory=list)      # P_n
-    dt: list[int] = field(default_factory=list)          # dead time active in period n
+    dt: list[int] = field(default_factory=list)          # (rising) dead time active in period n
+    dtf: list[int] = field(default_factory=list)         # falling dead time active in period n
     mp: list[int] = field(default_factory=list)          # minimum pulse active in period n
     cmp: list[tuple[int, int, int] | None] = field(default_factory=list)      # active at valley n (up half)
     cmp_peak: list[tuple[int, int, int] | None] = field(default_factory=list)  # active at peak n (down half)
@@ -110,8 +117,15 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
 
 
 def _compact(u: Inputs) -> Inputs:
-    """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler."""
-    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtc=0, om=0, vsc=0)
+    """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler,
+    one dead time, no compensation, the clamp, no carry."""
+    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtf=None, dtc=0,
+                   om=0, vsc=0)
+
+
+def falling_dt(u: Inputs) -> int:
+    """The falling dead time in force for inputs u (dtf_en_i = 0: dt)."""
+    return u.dt if u.dtf is None else u.dtf
 
 
 def _upd_code(upd: int) -> int:
@@ -157,8 +171,8 @@ class CoreModel:
         full = 6 << fixed.PHASE_WIDTH
         lead, min_period = self.lead, self.min_period
         r = Run()
-        p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp, min_period)
-        dt_cur, mp_cur = idle.dt, idle.mp
+        p_cur, _ = fixed.clamp_period(idle.period, idle.dt, idle.mp, min_period, dtf=falling_dt(idle))
+        dt_cur, dtf_cur, mp_cur = idle.dt, falling_dt(idle), idle.mp
         f_cur, _ = fixed.clamp_freq(idle.freq)
         upd, presc, cnt = _upd_code(idle.upd), idle.presc, 0
         t = fixed.START_DELAY                  # valley of period 0: the first clock the core runs
@@ -176,14 +190,14 @@ class CoreModel:
         carry, carry_per = (0, 0, 0), None   # volt-second carry of the last update taken, and its period
         #                                      (a run starts with none: the core clears it while stopped)
 
-        def compute(u: Inputs, s: int, period: int, dt: int, mp: int, at_peak: bool) -> Update:
+        def compute(u: Inputs, s: int, period: int, dt: int, dtf: int, mp: int, at_peak: bool) -> Update:
             nonlocal f_cur
             th = advance(s)                     # theta(S): the old frequency word up to S
             f_cur, _ = fixed.clamp_freq(u.freq)  # the new one from S on
             sector, angle = th >> fixed.PHASE_WIDTH, th & ((1 << fixed.PHASE_WIDTH) - 1)
             a16 = angle >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS)
-            thr = dt + mp
-            hdr, hdf = fixed.dtc_amounts(dt, dt, bool(u.dtc))
+            thr = max(dt, dtf) + mp
+            hdr, hdf = fixed.dtc_amounts(dt, dtf, bool(u.dtc))
             c_in = carry if (u.vsc and period == carry_per) else (0, 0, 0)
             sec, cmp, sat, err = fixed.modulate(u.mode, sector, a16, period, freq=f_cur, m=u.m, theta=u.theta,
                                                 v1=u.v1, v2=u.v2, vf_boost=u.vf_boost, vf_slope=u.vf_slope,
@@ -209,6 +223,7 @@ class CoreModel:
                 r.valley.append(t)
                 r.period.append(p_cur)
                 r.dt.append(dt_cur)
+                r.dtf.append(dtf_cur)
                 r.mp.append(mp_cur)
                 r.cmp.append(active.cmp if active else None)
                 r.sector.append(active.sector if active else None)
@@ -228,7 +243,7 @@ class CoreModel:
                 # the core runs (samples, takes) up to the stop clock itself: its run register
                 if ev and (stop_cycle is None or s - 1 < stop_cycle + fixed.START_DELAY):
                     u_pk = pget(n) if not last else get(n - 1)   # the ports hold the last inputs
-                    up = compute(u_pk, s, p_cur, dt_cur, mp_cur, True)
+                    up = compute(u_pk, s, p_cur, dt_cur, dtf_cur, mp_cur, True)
                     if stop_cycle is None or up.load - 1 < stop_cycle + fixed.START_DELAY:   # taken while running
                         r.updates.append(up)
                         active = up
@@ -240,20 +255,21 @@ class CoreModel:
                 break
             # ---- valley opportunity ----
             u = get(n)
-            p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp, min_period)
-            forced = (p_next, u.dt, u.mp) != (p_cur, dt_cur, mp_cur)
+            dtf_next = falling_dt(u)
+            p_next, _ = fixed.clamp_period(u.period, u.dt, u.mp, min_period, dtf=dtf_next)
+            forced = (p_next, u.dt, dtf_next, u.mp) != (p_cur, dt_cur, dtf_cur, mp_cur)
             opp = upd in (fixed.UPD_VALLEY, fixed.UPD_BOTH)
             ev = (opp and cnt == 0) or forced
             if opp:
                 cnt = 0 if cnt >= presc else cnt + 1
             upd, presc = _upd_code(u.upd), u.presc
             if ev:
-                up = compute(u, t + 2 * p_cur - lead, p_next, u.dt, u.mp, False)
+                up = compute(u, t + 2 * p_cur - lead, p_next, u.dt, dtf_next, u.mp, False)
                 r.updates.append(up)
                 active = up
                 carry, carry_per = up.carry, up.period
             t += 2 * p_cur
-            p_cur, dt_cur, mp_cur = p_next, u.dt, u.mp
+            p_cur, dt_cur, dtf_cur, mp_cur = p_next, u.dt, dtf_next, u.mp
         if stop is None:
             r.valley.append(t)
             end = t
@@ -290,8 +306,8 @@ class CoreModel:
                 lst += [(a, 1), (b, 0)]
             pole_ch[ph] = [(c, v) for c, v in lst if c < end]
         r.pole_edges = _merge(pole_ch, 3)
-        # ---- gates: target per leg, piecewise constant; dead time and minimum pulse change one clock
-        # after each valley (rtl/deadtime.sv reads the core's dt_q / mp_q a clock ahead) ----
+        # ---- gates: target per leg, piecewise constant; dead times and minimum pulse change one clock
+        # after each valley (rtl/deadtime.sv reads the core's dt_q / dtf_q / mp_q a clock ahead) ----
         first = [x.load for x in r.updates if stop_cycle is None or x.load <= stop_cycle]
         valid_from = first[0] + 1 if first else end          # pole_valid_q
         n_val = len(r.dt)
@@ -314,7 +330,8 @@ class CoreModel:
                 k = max(bisect.bisect_right(r.valley, c - 1) - 1, 0)
                 dt = r.dt[k] if k < n_val else dt_cur
                 mp = r.mp[k] if k < n_val else mp_cur
-                changes.append((c, tgt, dt, mp))
+                dtf = r.dtf[k] if k < n_val else dtf_cur
+                changes.append((c, tgt, dt, mp, dtf))
             ev_, self.legs[ph] = simulate_events(changes, end, (1 << fixed.DT_WIDTH) - 1, self.legs[ph])
             gate_ch[ph] = [(c, h) for c, h, _ in ev_ if c < end]
             gate_ch[ph + 3] = [(c, lo) for c, _, lo in ev_ if c < end]

@@ -1,14 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
 """Dead-time insertion model of rtl/deadtime.sv: an exact event-driven version and a per-clock reference.
 
-The FSM per leg (state: hi, lo, cnt = clocks the state has lasted, this clock included, saturating):
+The FSM per leg (state: hi, lo, cnt = clocks the state has lasted, this clock included, saturating).
+Two dead times: dt (rising: the high side turns on dt after the low side turned off) and dtf (falling: the
+low side turns on dtf after the high side turned off); dtf = None means dtf = dt (one dead time).
 
 * target OFF (core disabled / no valid pole): both gates off on the next clock.
 * target BRAKE (trip with "low sides on"): the high side turns off on the next clock, then the low side
-  turns on after the dead time (directly when dt == 0).
-* a gate is on and the pole asks for the other side: once cnt >= max(dt, mp) the gate turns off
-  (minimum on-time); with dt == 0 the other gate turns on on the same clock edge.
-* both gates off: once cnt >= dt the wanted gate turns on (dead time dt).
+  turns on after the falling dead time (directly when dtf == 0).
+* a gate is on and the pole asks for the other side: once cnt >= max(dt, dtf, mp) the gate turns off
+  (minimum on-time); with a zero dead time for the other gate's edge (dt for the high side, dtf for the
+  low side) the other gate turns on on the same clock edge.
+* both gates off: once cnt >= max(dt, 1) the high side, once cnt >= max(dtf, 1) the low side turns on
+  when wanted.
 * cnt is 0 only in the first clock after reset, and nothing is "held" then, even with dt == 0 (the RTL
   precomputes its compares a clock ahead; in that clock it has none).
 
@@ -31,33 +35,41 @@ class LegState:
         return self.hi, self.lo
 
 
-def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0) -> LegState:
-    """One clock of the FSM (the per-clock reference; mirrors the always_comb of rtl/deadtime.sv)."""
+def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0, dtf: int | None = None) -> LegState:
+    """One clock of the FSM (the per-clock reference; mirrors the always_comb of rtl/deadtime.sv).
+    ``dt``: rising dead time (before the high side turns on), ``dtf``: falling (before the low side;
+    None: dt)."""
+    if dtf is None:
+        dtf = dt
     hi, lo = s.hi, s.lo
-    held = s.cnt >= max(dt, 1)
-    held_on = held and s.cnt >= mp
+    held_r = s.cnt >= max(dt, 1)
+    held_f = s.cnt >= max(dtf, 1)
+    held_on = s.cnt >= max(dt, dtf, mp, 1)
     if tgt == OFF:
         hi, lo = 0, 0
     elif s.hi:
         if tgt == BRAKE or (tgt == LO and held_on):
-            hi, lo = 0, int(dt == 0)
+            hi, lo = 0, int(dtf == 0)
     elif s.lo:
         if tgt == HI and held_on:
             hi, lo = int(dt == 0), 0
-    elif held:
-        hi, lo = int(tgt == HI), int(tgt in (LO, BRAKE))
+    elif tgt == HI:
+        hi = int(held_r)
+    else:
+        lo = int(held_f)
     cnt = 1 if (hi, lo) != (s.hi, s.lo) else min(s.cnt + 1, sat)
     return LegState(hi, lo, cnt)
 
 
 def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | None = None,
-                    mp: list[int] | None = None) -> list[tuple[int, int]]:
-    """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target, dead time and
-    minimum pulse (default 0)."""
+                    mp: list[int] | None = None,
+                    dtf: list[int | None] | None = None) -> list[tuple[int, int]]:
+    """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target, rising dead time,
+    minimum pulse (default 0) and falling dead time (default: the rising one)."""
     s = init or LegState(0, 0, 0)          # reset: off, the dead time counts from the release
     out = [s.key()]
     for i, (t, d) in enumerate(zip(tgt, dt)):
-        s = step_cycle(s, t, d, sat, mp[i] if mp is not None else 0)
+        s = step_cycle(s, t, d, sat, mp[i] if mp is not None else 0, dtf[i] if dtf is not None else None)
         out.append(s.key())
     return out
 
@@ -66,7 +78,8 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
                     init: LegState | None = None, start: int = 0) -> tuple[list[tuple[int, int, int]], LegState]:
     """Event-driven FSM: exact same result as simulate_cycles, in time proportional to the edges.
 
-    ``changes``: sorted (cycle, target, dt[, mp]) -- the inputs from that cycle on (the first at ``start``).
+    ``changes``: sorted (cycle, target, dt[, mp[, dtf]]) -- the inputs from that cycle on (the first at
+    ``start``); dt is the rising dead time, dtf the falling one (missing or None: dt).
     Returns the gate changes [(cycle, hi, lo), ...] (the new value holds from that cycle) for cycles in
     (start, end], and the state at cycle ``end``.
     """
@@ -76,6 +89,7 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
     for i, ch in enumerate(changes):
         c0, tgt, dt = ch[:3]
         mp = ch[3] if len(ch) > 3 else 0
+        dtf = ch[4] if len(ch) > 4 and ch[4] is not None else dt
         assert c0 == c, (c0, c)
         c_next = changes[i + 1][0] if i + 1 < len(changes) else end
         while c < c_next:
@@ -87,9 +101,9 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
             elif s.hi and tgt == BRAKE:
                 dec = c
             elif s.hi or s.lo:                         # minimum on-time, then off (or swap)
-                dec = c + max(0, max(dt, mp, 1) - s.cnt)
-            else:                                      # dead time, then on
-                dec = c + max(0, max(dt, 1) - s.cnt)
+                dec = c + max(0, max(dt, dtf, mp, 1) - s.cnt)
+            else:                                      # the edge's dead time, then on
+                dec = c + max(0, max(dt if tgt == HI else dtf, 1) - s.cnt)
             if dec is None or dec >= c_next:
                 s.cnt = min(s.cnt + (c_next - c), sat)
                 c = c_next
@@ -98,7 +112,7 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
             if tgt == OFF:
                 hi, lo = 0, 0
             elif s.hi:
-                hi, lo = 0, int(dt == 0)
+                hi, lo = 0, int(dtf == 0)
             elif s.lo:
                 hi, lo = int(dt == 0), 0
             else:

@@ -78,14 +78,16 @@ _ROM = sine_table()
 FREQ_MAX = (1 << (FREQ_WIDTH - 1)) - 1   # largest |frequency word| accepted (parameter FreqMax)
 
 
-def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int | None = None) -> tuple[int, bool]:
-    """Clamp a half period to [max(min_period, 2*(dt + mp)), 2**CNT_WIDTH - 1]; returns (value, clamped);
-    min_period defaults to the full core's MIN_PERIOD.
+def clamp_period(p: int, dt: int = 0, mp: int = 0, min_period: int | None = None,
+                 dtf: int | None = None) -> tuple[int, bool]:
+    """Clamp a half period to [max(min_period, 2*(max(dt, dtf) + mp)), 2**CNT_WIDTH - 1]; returns (value,
+    clamped); min_period defaults to the full core's MIN_PERIOD, dtf (the falling dead time) to dt.
 
     A period too short for the dead time plus the minimum pulse is lengthened, never the dead time
     shortened: the dead time is a safety setting."""
     top = (1 << CNT_WIDTH) - 1
-    low = max(_latency("MIN_PERIOD") if min_period is None else min_period, 2 * (dt + mp))
+    dtx = dt if dtf is None else max(dt, dtf)
+    low = max(_latency("MIN_PERIOD") if min_period is None else min_period, 2 * (dtx + mp))
     if p < low:
         return low, True
     if p > top:

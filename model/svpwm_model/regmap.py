@@ -137,7 +137,9 @@ REGISTERS: tuple[Register, ...] = (
         Field("period", 0, 16, "rw", 0x600, port="period_o", compact=True),
     ), compact=True),
     Register("DT", 0x34, (
-        Field("dt", 0, 10, "rw", 0x0, port="dt_o", compact=True),
+        Field("dt", 0, 10, "rw", 0x0, port="dt_dt_o", compact=True),
+        Field("dtf", 16, 10, "rw", 0x0, port="dt_dtf_o"),
+        Field("dtf_en", 31, 1, "rw", 0x0, port="dt_dtf_en_o"),
     ), compact=True),
     Register("MP", 0x38, (
         Field("mp", 0, 10, "rw", 0x0, port="mp_o"),

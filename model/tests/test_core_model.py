@@ -14,7 +14,7 @@ import math
 import pytest
 
 from svpwm_model import fixed
-from svpwm_model.analysis import line_fundamental, phase_switching, word_at
+from svpwm_model.analysis import check_legs, duty_error, line_fundamental, phase_switching, word_at
 from svpwm_model.core import CoreModel, Inputs
 
 FW, MW = fixed.freq_word, fixed.m_word
@@ -184,3 +184,65 @@ def test_duty_error_against_ideal_and_min_pulse_rule():
     r.cmp[100] = tuple(c)
     with pytest.raises(AssertionError, match="period 100"):
         duty_error(r)
+
+
+def test_clamp_period_falling_dead_time():
+    """fixed.clamp_period: the floor is 2 (max(dt, dtf) + mp); dtf None (the default) is dt, so every call
+    without it is the symmetric one."""
+    mpd = fixed.MIN_PERIOD
+    assert fixed.clamp_period(100, 10, 0) == fixed.clamp_period(100, 10, 0, dtf=None) == (mpd, True)
+    assert fixed.clamp_period(300, 10, 5, dtf=150) == (310, True)        # 2 (150 + 5)
+    assert fixed.clamp_period(300, 150, 5, dtf=10) == (310, True)        # the larger one, either edge
+    assert fixed.clamp_period(310, 150, 5, dtf=10) == (310, False)
+    assert fixed.clamp_period(400, 10, 0, min_period=20, dtf=30) == (400, False)
+    assert fixed.clamp_period(50, 10, 0, min_period=20, dtf=30) == (60, True)
+    for dt in (0, 7, 200):
+        for mp in (0, 3):
+            assert fixed.clamp_period(260, dt, mp, dtf=dt) == fixed.clamp_period(260, dt, mp)
+
+
+def test_asymmetric_dead_time_threshold_and_gates():
+    """CoreModel with dt != dtf: the period floor and the calculator's minimum-pulse threshold use
+    max(dt, dtf) + mp (the applied compare values are snap_min_pulse of the raw ones with it, and change
+    when only dtf changes); a change of dtf alone forces an update at its valley; the legs wait dt before
+    a high side, dtf before a low side; the compact model ignores dtf."""
+    base = dict(freq=FW(400.0), m=MW(1.0), period=600, presc=3)
+    sched = ([Inputs(**base, dt=6, dtf=40, mp=2)] * 6 + [Inputs(**base, dt=6, dtf=10, mp=2)] * 6
+             + [Inputs(**(base | dict(period=100)), dt=5, dtf=140)] * 4)
+    r = CoreModel().run(sched[0], sched, len(sched))
+    assert r.dtf[1:7] == [40] * 6 and r.dt[1:7] == [6] * 6
+    assert r.period[13:] == [280] * 3                    # 2 * (max(5, 140) + 0): raised for dtf
+    duty_error(r)                                        # asserts cmp == snap(raw, max(dt, dtf) + mp)
+    # the snapped values are those of max(dt, dtf) + mp, not of dt + mp (m = 1: values near 0 snap)
+    for u in r.updates:
+        n = r.valley.index(u.load) if u.load in r.valley else None
+        if n is not None and r.dtf[n] != r.dt[n]:
+            thr = max(r.dt[n], r.dtf[n]) + r.mp[n]
+            assert all(c == 0 or c >= thr for c in u.cmp), (n, u.cmp, thr)
+    # not vacuous: the same schedule with dtf = dt gives other compare values (thr 8 instead of 42)
+    sym = [Inputs(**{k: v for k, v in u.__dict__.items() if k != "dtf"}) for u in sched]
+    rs = CoreModel().run(sym[0], sym, len(sym))
+    assert [u.cmp for u in rs.updates[:3]] != [u.cmp for u in r.updates[:3]], "dtf did not change thr"
+    # the dtf-only change at valley 7 is a forced update (the prescaler would skip it: updates at 1, 5, 9)
+    assert r.valley[7] in {u.load for u in r.updates}
+    # per-edge dead times on the legs: gaps before a high side >= dt, before a low side >= dtf, and the
+    # exact value occurs (a low side waits dtf = 40 after a high side)
+    def at(c):
+        k = max(i for i, v in enumerate(r.valley[:-1]) if v <= c)
+        return r.dt[k], r.dtf[k]
+    assert check_legs(r.gate_edges, at).ok
+    gaps = []
+    for leg in range(3):
+        last_hi_off, prev = None, (0, 0)
+        for c, w in r.gate_edges:
+            cur = ((w >> leg) & 1, (w >> (leg + 3)) & 1)
+            if prev[0] and not cur[0]:
+                last_hi_off = c
+            if cur[1] and not prev[1] and last_hi_off is not None:
+                gaps.append((at(c - 1), c - last_hi_off))
+            prev = cur
+    assert any(g == 40 for (dt, dtf), g in gaps if dtf == 40), gaps[:10]
+    # compact: dtf ignored, the symmetric run
+    rc = CoreModel(compact=True).run(sched[0], sched, len(sched))
+    rs = CoreModel(compact=True).run(sym[0], sym, len(sym))
+    assert rc.gate_edges == rs.gate_edges and rc.dtf == rc.dt

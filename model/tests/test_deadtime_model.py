@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from svpwm_model.deadtime import HI, LO, OFF, LegState, simulate_cycles, simulate_events, step_cycle
+from svpwm_model.deadtime import BRAKE, HI, LO, OFF, LegState, simulate_cycles, simulate_events, step_cycle
 
 SAT10 = (1 << 10) - 1
 
@@ -167,3 +167,98 @@ def test_reset_counts_as_turn_off(dt):
     assert [c for c, g in enumerate(out) if g == (0, 1)][0] == dt + 1
     ev, _ = simulate_events(to_changes(tgt, [dt] * len(tgt)), len(tgt), SAT10)
     assert ev == [(dt + 1, 0, 1)]
+
+
+# ---- separate rising (dt) and falling (dtf) dead times -------------------------------------------------
+
+def random_inputs_asym(rng: random.Random, sat: int, n_seg: int):
+    """Per-cycle target (OFF, LO, HI, BRAKE), rising dead time, falling dead time and minimum pulse,
+    piecewise constant with random change points; dt != dtf mostly, either larger, zeros on one edge."""
+    tgt, dt, dtf, mp = [], [], [], []
+    pick = lambda: min(rng.choice((0, 0, 1, 2, 3, 5, rng.randint(0, sat), sat)), sat)   # noqa: E731
+    d, f, m = pick(), pick(), 0
+    for _ in range(n_seg):
+        if rng.random() < 0.3:
+            d, f = pick(), pick()
+        if rng.random() < 0.2:
+            m = pick()
+        t = rng.choices((OFF, LO, HI, BRAKE), (1, 3, 3, 1))[0]
+        w = max(d, f, m)
+        n = rng.choice((1, 2, max(1, w - 1), max(1, w), w + 1, w + 2, rng.randint(1, 3 * w + 5)))
+        for _ in range(n):
+            if rng.random() < 0.01:
+                d, f = rng.randint(0, sat), rng.randint(0, sat)
+            tgt.append(t)
+            dt.append(d)
+            dtf.append(f)
+            mp.append(m)
+    return tgt, dt, dtf, mp
+
+
+@pytest.mark.parametrize("sat", [SAT10, 15, 1])
+def test_events_equal_cycles_asymmetric(sat):
+    """simulate_events == simulate_cycles with dt != dtf, minimum pulses and braking, from reset and from
+    a state reached by the per-clock model."""
+    rng = random.Random(0xA5F + sat)
+    for trial in range(80 if sat == SAT10 else 300):
+        tgt, dt, dtf, mp = random_inputs_asym(rng, sat, rng.randint(1, 40))
+        init = None
+        if trial % 3 == 1:
+            s = LegState(0, 0, 0)
+            for k in range(min(7, len(tgt))):
+                s = step_cycle(s, tgt[k], dt[k], sat, mp[k], dtf[k])
+            init = s
+            tgt, dt, dtf, mp = tgt[7:] or [LO], dt[7:] or [0], dtf[7:] or [3 % (sat + 1)], mp[7:] or [0]
+        start = rng.choice((0, 0, 77))
+        end = start + len(tgt)
+        exp = simulate_cycles(tgt, dt, sat, init, mp=mp, dtf=dtf)
+        ch = []
+        for k, x in enumerate(zip(tgt, dt, mp, dtf)):
+            if not ch or ch[-1][1:] != x:
+                ch.append((start + k,) + x)
+        ev, _ = simulate_events(ch, end, sat, init, start)
+        got = events_to_cycles(ev, end, init.key() if init else (0, 0), start)
+        assert got == exp, f"trial {trial}: first difference at cycle {next(i for i, (a, b) in enumerate(zip(got, exp)) if a != b)}"
+
+
+@pytest.mark.parametrize("dt,dtf", [(3, 9), (9, 3), (0, 5), (5, 0), (1, 2), (48, 17)])
+def test_asymmetric_edges(dt, dtf):
+    """From the low side on, a long high pole pulse: the high side turns on dt clocks after the low side
+    turned off, and the low side dtf clocks after the high side turned off; a short high pole pulse gives
+    a high-side pulse of max(dt, dtf) (minimum on-time); dtf = None is dtf = dt."""
+    lead, w = max(dt, dtf) + 3, 3 * max(dt, dtf) + 5
+    tgt = [LO] * lead + [HI] * w + [LO] * (2 * max(dt, dtf) + 4)
+    n = len(tgt)
+    out = simulate_cycles(tgt, [dt] * n, SAT10, IDLE, dtf=[dtf] * n)
+    ev, _ = simulate_events([(0, LO, dt, 0, dtf), (lead, HI, dt, 0, dtf), (lead + w, LO, dt, 0, dtf)], n,
+                            SAT10, IDLE)
+    assert events_to_cycles(ev, n, (0, 0)) == out
+    lo_off = lead + 1                                   # the low side turns off one clock after the request
+    hi_on = lo_off + dt if dt else lo_off               # (dt = 0: the same clock, a swap)
+    hi_off = lead + w + 1
+    lo_on = hi_off + dtf if dtf else hi_off
+    assert (out[hi_on], out[hi_on - 1]) == ((1, 0), (0, 0) if dt else (0, 1)), (dt, dtf, out[lead:hi_on + 2])
+    assert [c for c, (h, _) in enumerate(out) if h] == list(range(hi_on, hi_off))
+    assert out[lo_on] == (0, 1) and all(g == (0, 0) for g in out[hi_off:lo_on])
+    # a high pole pulse of dt + 1 clocks: the high side on for max(dt, dtf) (minimum on-time), then dtf
+    if dt:
+        tgt = [LO] * lead + [HI] * (dt + 1) + [LO] * (3 * max(dt, dtf) + 4)
+        n = len(tgt)
+        out = simulate_cycles(tgt, [dt] * n, SAT10, IDLE, dtf=[dtf] * n)
+        hi = [c for c, (h, _) in enumerate(out) if h]
+        assert hi == list(range(lead + 1 + dt, lead + 1 + dt + max(dt, dtf)))
+        assert out[hi[-1] + 1 + dtf] == (0, 1) and out[hi[-1] + dtf] == ((0, 0) if dtf else (1, 0))
+    # dtf = None and dtf = dt are the symmetric FSM
+    n = len(tgt)
+    assert simulate_cycles(tgt, [dt] * n, SAT10, IDLE, dtf=[None] * n) == simulate_cycles(tgt, [dt] * n, SAT10, IDLE)
+
+
+def test_brake_uses_falling_dead_time():
+    """BRAKE from the high side on: the high side off on the next clock, the low side dtf later."""
+    for dt, dtf in ((9, 3), (3, 9), (4, 0)):
+        tgt = [HI] * (dt + 3) + [BRAKE] * (dtf + 4)
+        n = len(tgt)
+        out = simulate_cycles(tgt, [dt] * n, SAT10, IDLE, dtf=[dtf] * n)
+        hi_off = dt + 3 + 1
+        assert out[hi_off - 1] == (1, 0)
+        assert out[hi_off + dtf] == (0, 1) and all(g == (0, 0) for g in out[hi_off:hi_off + dtf])

@@ -30,9 +30,14 @@ def test_regmap_consistent():
     assert (R.CMP_C.addr, R.CLK_HZ.addr) == (0x54, 0x58)
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
-    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter; map 2.3: the same offsets
+    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter; maps 2.3, 2.4: the same offsets
     assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0002_0004)
-    # DTC (map 2.4): appended after FEATURES, the full variant only
+    # map 2.4: the falling dead time and its enable in DT beside dt, full variant only, reset 0 (= dt)
+    fields = {f.name: (f.lsb, f.width, f.kind, f.reset, f.compact) for f in R.DT.fields}
+    assert fields == {"dt": (0, 10, "rw", 0, True), "dtf": (16, 10, "rw", 0, False),
+                      "dtf_en": (31, 1, "rw", 0, False)}, fields
+    assert R.DT.encode(dt=48, dtf=30, dtf_en=1) == 0x801E_0030
+    # map 2.4: DTC appended after FEATURES, the full variant only
     assert (R.DTC.addr, R.SIZE, R.DTC.encode(en=1, isign=5)) == (0x60, 0x64, 0x51)
     assert not R.DTC.compact
     f = R.FEATURES.field("compact")
@@ -50,14 +55,17 @@ def test_regmap_consistent():
 # the core runs with a minimum pulse of 0 -- what fits the iCEstick's HX1K)
 COMPACT_REGS = {"ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "STATUS", "CLK_HZ", "FEATURES"}
 COMPACT_CTRL = ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear"]
+COMPACT_DT = ["dt"]            # map 2.4: the compact core has one dead time (no dtf, dtf_en)
+PARTIAL = {"CTRL": COMPACT_CTRL, "DT": COMPACT_DT}     # registers only some of whose fields are compact
 
 
 def test_compact_variant():
     assert {r.name for r in R.REGISTERS if r.compact} == COMPACT_REGS
-    assert [f.name for f in R.CTRL.fields if f.compact] == COMPACT_CTRL
+    for name, compact in PARTIAL.items():
+        assert [f.name for f in R.BY_NAME[name].fields if f.compact] == compact
     for r in R.REGISTERS:
         for f in r.fields:
-            if r.name != "CTRL":
+            if r.name not in PARTIAL:
                 assert f.compact == r.compact, f"{r.name}.{f.name}"
             if not f.compact:        # absent: its output is a constant there, so reset 0 without a parameter
                 assert f.reset == 0 and f.rst_param is None, f"{r.name}.{f.name}"

@@ -78,6 +78,9 @@ class CoreTB:
         d.m_i.value = u.m
         d.period_i.value = u.period
         d.dt_i.value = u.dt
+        # the falling dead time: dtf_en_i = 0 with a value on dtf_i that must be ignored, or dtf_en_i = 1
+        d.dtf_en_i.value = int(u.dtf is not None)
+        d.dtf_i.value = u.dtf if u.dtf is not None else (u.dt ^ 0x155) & ((1 << len(d.dtf_i)) - 1)
         d.mp_i.value = u.mp
         d.mode_i.value = u.mode
         d.theta_i.value = u.theta & 0xFFFF
@@ -269,7 +272,7 @@ def check_edges(rtl: RtlRun, exp: Run, stop=None, table_i: bool = True, dt_of=No
     if table_i:
         seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
         assert seq.ok, "; ".join(seq.failures[:5])
-    legs = check_legs(rtl.gate_edges, dt_of or dead_time_at(rtl.valley, exp.dt),
+    legs = check_legs(rtl.gate_edges, dt_of or dead_time_at(rtl.valley, exp.dt, exp.dtf),
                       forced_off=[exp.end - 1] if stop is not None else [])
     assert legs.ok, (legs.shoot_through + legs.dead_time + legs.short_pulse)[:5]
     return seq
@@ -312,11 +315,13 @@ def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: i
     return rtl
 
 
-def dead_time_at(valleys: list[int], dts: list[int]) -> Callable[[int], int]:
-    """The dead time in force at a cycle: the one of the carrier period containing it."""
-    def at(c: int) -> int:
+def dead_time_at(valleys: list[int], dts: list[int], dtfs: list[int] | None = None) -> Callable:
+    """The dead time in force at a cycle: the one of the carrier period containing it; with the falling
+    dead times ``dtfs`` the pair (dt, dtf) (analysis.check_legs takes either)."""
+    def at(c: int):
         k = bisect.bisect_right(valleys, c) - 1
-        return dts[min(max(k, 0), len(dts) - 1)]
+        k = min(max(k, 0), len(dts) - 1)
+        return dts[k] if dtfs is None else (dts[k], dtfs[k])
     return at
 
 

@@ -32,7 +32,8 @@ module svpwm_bench_top #(
 );
   localparam int B   = 1 + FreqWidth + 16 + CntWidth + DtWidth;   // first safety input bit
   localparam int R   = B + DtWidth + 7;                          // first input-mode bit
-  localparam int NIn = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2 + 6;
+  localparam int F   = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2 + 6;     // falling dead time, its enable
+  localparam int NIn = F + DtWidth + 1;
 
   logic [NIn-1:0] in_q;
   always_ff @(posedge clk_i) begin
@@ -71,6 +72,8 @@ module svpwm_bench_top #(
     .vsc_en_i       (in_q[R + 120]),
     .period_i       (in_q[1 + FreqWidth + 16 +: CntWidth]),
     .dt_i           (in_q[1 + FreqWidth + 16 + CntWidth +: DtWidth]),
+    .dtf_i          (in_q[F +: DtWidth]),
+    .dtf_en_i       (in_q[F + DtWidth]),
     .mp_i           (in_q[B +: DtWidth]),
     .fault_i        (in_q[B + DtWidth]),
     .fault_clear_i  (in_q[B + DtWidth + 1]),

@@ -12,6 +12,7 @@ module tb_deadtime #(
   input  logic               brake_i,
   input  logic               pole_i,
   input  logic [DtWidth-1:0] dt_i,
+  input  logic [DtWidth-1:0] dtf_i,
   input  logic [DtWidth-1:0] mp_i,
   output logic               clk,
   output logic               hi_o,
@@ -28,6 +29,7 @@ module tb_deadtime #(
     .brake_i (brake_i),
     .pole_i  (pole_i),
     .dt_i    (dt_i),
+    .dtf_i   (dtf_i),
     .mp_i    (mp_i),
     .hi_o   (hi_o),
     .lo_o   (lo_o)

@@ -1,13 +1,16 @@
 # SPDX-License-Identifier: Apache-2.0
 """deadtime against the golden model svpwm_model.deadtime.simulate_cycles (exact, ==, every clock).
 
-Inputs are driven per clock (en_i, pole_i; dt_i and mp_i one clock ahead, as the RTL reads them); the
-model's target is OFF while en_i is low, else HI / LO from pole_i; its saturation is 2^DtWidth - 1 (the RTL counter's all-ones reset value). Sequences are
-seeded random pole pulses shorter than, equal to and just longer than dt (and long ones), en_i drops
-(also mid-pulse), dt = 0 (complementary, same-edge swap), dt = 2^DtWidth - 1 and dt changing while
-running. Besides model equality every trace is checked directly: never both gates on; a gate turns on
-only after both were off for at least the dt in force (a direct swap only with dt = 0), so every gap is
->= dt; an on-pulse lasts >= dt unless en_i dropped. Builds: DtWidth 10 (default) and 4.
+Inputs are driven per clock (en_i, pole_i; dt_i, dtf_i and mp_i one clock ahead, as the RTL reads them);
+the model's target is OFF while en_i is low, else HI / LO from pole_i; its saturation is 2^DtWidth - 1 (the
+RTL counter's all-ones reset value). Sequences are seeded random pole pulses shorter than, equal to and just
+longer than dt (and long ones), en_i drops (also mid-pulse), dt = 0 (complementary, same-edge swap),
+dt = 2^DtWidth - 1 and dt changing while running; the same with separate rising (dt_i) and falling (dtf_i)
+dead times, random and corner pairs (zero on one edge, the maximum, 1 / 2). Without a falling dead time in
+the schedule dtf_i = dt_i. Besides model equality every trace is checked directly: never both gates on; the
+high side turns on only after both were off for at least the dt in force, the low side after dtf (a direct
+swap only when that edge's dead time is 0); an on-pulse lasts >= max(dt, dtf, mp) unless en_i dropped (or
+braking cut a high side). Builds: DtWidth 10 (default), 4 and 1.
 """
 from __future__ import annotations
 
@@ -31,14 +34,16 @@ class DtTB:
         self.icarus = cocotb.SIM_NAME.lower().startswith("icarus")
 
     async def run(self, sched, what=""):
-        """sched: per clock (en, pole, dt[, brake, mp]). Resets, drives, compares (hi, lo) every clock with
-        the model, checks the direct properties; returns the RTL trace (hi, lo) at clocks 0..len(sched)."""
+        """sched: per clock (en, pole, dt[, brake, mp[, dtf]]), dtf None or missing: dtf_i = dt. Resets,
+        drives, compares (hi, lo) every clock with the model, checks the direct properties; returns the RTL
+        trace (hi, lo) at clocks 0..len(sched)."""
         d = self.dut
-        sched = [tuple(x) + (0, 0)[len(x) - 3:] for x in sched]
+        sched = pad(sched)
         d.en_i.value = 0
         d.brake_i.value = 0
         d.pole_i.value = 0
         d.dt_i.value = 0
+        d.dtf_i.value = 0
         d.mp_i.value = 0
         d.rst_ni.value = 0
         await FallingEdge(d.clk)
@@ -47,14 +52,15 @@ class DtTB:
         # idle (en_i low) until the dead-time counter has saturated: the schedule starts "off for long"
         # (test_reset_turn_off checks the reset state itself)
         await clock_cycles(d.clk, self.max + 1)
-        d.dt_i.value = sched[0][2]          # dt_i / mp_i are read one clock ahead: the ports carry the
-        d.mp_i.value = sched[0][4]          # values in force in the next clock
+        d.dt_i.value = sched[0][2]          # dt_i / dtf_i / mp_i are read one clock ahead: the ports carry
+        d.dtf_i.value = sched[0][5]         # the values in force in the next clock
+        d.mp_i.value = sched[0][4]
         await FallingEdge(d.clk)
-        tgt = [OFF if not en else BRAKE if brake else (HI if pole else LO) for en, pole, _, brake, _ in sched]
+        tgt = [OFF if not en else BRAKE if brake else (HI if pole else LO) for en, pole, _, brake, _, _ in sched]
         exp = simulate_cycles(tgt, [x[2] for x in sched], self.max, LegState(0, 0, self.max),
-                              mp=[x[4] for x in sched])
+                              mp=[x[4] for x in sched], dtf=[x[5] for x in sched])
         trace = []
-        for k, (en, pole, _, brake, _) in enumerate(sched):
+        for k, (en, pole, _, brake, _, _) in enumerate(sched):
             got = (int(d.hi_o.value), int(d.lo_o.value))
             assert got == exp[k], (f"{what} clock {k}: RTL (hi, lo) = {got}, model {exp[k]}; inputs (en, pole, dt) "
                                    f"from clock {max(0, k - 4)}: {sched[max(0, k - 4):k + 1]}")
@@ -64,6 +70,7 @@ class DtTB:
             d.pole_i.value = pole
             nxt = sched[min(k + 1, len(sched) - 1)]
             d.dt_i.value = nxt[2]
+            d.dtf_i.value = nxt[5]
             d.mp_i.value = nxt[4]
             await FallingEdge(d.clk)
         got = (int(d.hi_o.value), int(d.lo_o.value))
@@ -73,26 +80,36 @@ class DtTB:
         return trace
 
 
+def pad(sched):
+    """Schedule entries as (en, pole, dt, brake, mp, dtf) with dtf resolved (None / missing: dt)."""
+    out = []
+    for x in sched:
+        x = tuple(x) + (0, 0, None)[len(x) - 3:]
+        out.append(x[:5] + (x[2] if x[5] is None else x[5],))
+    return out
+
+
 def check_properties(trace, sched, what=""):
     """Safety directly on the trace (no model): see the module docstring."""
     off_run = 1 << 30                      # clocks both gates have been off (reset: long ago)
     on_since = [None, None]
-    sched = [tuple(x) + (0, 0)[len(x) - 3:] for x in sched]
+    sched = pad(sched)
     for c in range(1, len(trace)):
         prev, cur = trace[c - 1], trace[c]
-        en, _, dt, brake, mp = sched[c - 1]   # inputs of the deciding clock c - 1
+        en, _, dt, brake, mp, dtf = sched[c - 1]   # inputs of the deciding clock c - 1
         assert cur != (1, 1), f"{what}: both gates on at clock {c}"
         for g in (0, 1):
+            d = (dt, dtf)[g]                        # the high side waits dt, the low side dtf
             if cur[g] and not prev[g]:                                  # turn-on
                 if prev[1 - g]:
-                    assert dt == 0, f"{what}: direct swap at clock {c} with dt = {dt}"
+                    assert d == 0, f"{what}: direct swap to {'hl'[g]} at clock {c} with its dead time {d}"
                 else:
-                    assert off_run >= dt, f"{what}: gap {off_run} < dt {dt} before the turn-on at {c}"
+                    assert off_run >= d, f"{what}: gap {off_run} < {('dt', 'dtf')[g]} {d} before the turn-on at {c}"
                 on_since[g] = c
             if prev[g] and not cur[g]:                                  # turn-off
                 if en and not (brake and g == 0) and on_since[g] is not None:
-                    assert c - on_since[g] >= max(dt, mp), \
-                        f"{what}: on-pulse {c - on_since[g]} < max(dt {dt}, mp {mp}) ending at {c}"
+                    assert c - on_since[g] >= max(dt, dtf, mp), \
+                        f"{what}: on-pulse {c - on_since[g]} < max(dt {dt}, dtf {dtf}, mp {mp}) ending at {c}"
         off_run = off_run + 1 if cur == (0, 0) and prev == (0, 0) else (1 if cur == (0, 0) else 0)
 
 
@@ -126,6 +143,7 @@ async def reset_turn_off(dut):
     d = dut
     for dt in (0, 3, min(40, tb.max)):
         d.dt_i.value = dt
+        d.dtf_i.value = dt
         d.mp_i.value = 0
         d.brake_i.value = 0
         d.en_i.value = 1
@@ -251,8 +269,8 @@ async def short_pulses(dut):
 
 @cocotb.test()
 async def one_bit_width(dut):
-    """DtWidth = 1 (dead time and minimum pulse 0 or 1, the counter saturating at 1): random pulses, en_i
-    drops, braking, dt and mp changing while running. Runs on the 1-bit build only (the other tests
+    """DtWidth = 1 (dead times and minimum pulse 0 or 1, the counter saturating at 1): random pulses, en_i
+    drops, braking, dt, dtf and mp changing while running (independently). Runs on the 1-bit build only (the other tests
     use dead times a 1-bit port cannot hold)."""
     tb = DtTB(dut)
     if tb.W != 1:
@@ -262,8 +280,86 @@ async def one_bit_width(dut):
     for _ in range(600 if not tb.icarus else 300):
         sched.append((int(rng.random() > 0.05), int(rng.random() < 0.5) if rng.random() < 0.4 else
                       (sched[-1][1] if sched else 0), rng.randint(0, 1), int(rng.random() < 0.03),
-                      rng.randint(0, 1)))
+                      rng.randint(0, 1), rng.randint(0, 1)))
     await tb.run(sched, "DtWidth 1")
+
+
+@cocotb.test()
+async def asym_random(dut):
+    """Separate rising / falling dead times: seeded random pole sequences (pulses around both dead times,
+    en_i drops, braking, minimum pulses) at random pairs dt != dtf, both orders, also changing while
+    running; per clock == model and the direct checks."""
+    tb = DtTB(dut)
+    if tb.W == 1:
+        return
+    rng = random.Random(0xA5D7 + tb.W)
+    vals = sorted({0, 1, 2, 3, 5, 8, min(13, tb.max), min(40, tb.max), tb.max})
+    n_seg = 40 if tb.icarus else 120
+    for trial in range(4 if tb.icarus else 8):
+        pairs = []
+        while len(pairs) < 6:
+            a, b = rng.choice(vals), rng.choice(vals)
+            if a != b:
+                pairs.append((a, b))
+        mp = rng.choice((0, 0, 1, 3, min(17, tb.max)))
+        base = random_sched(rng, lambda i: max(pairs[(i // 15) % len(pairs)]), n_seg, 64)
+        sched = []
+        for k, (en, pole, _) in enumerate(base):
+            dt, dtf = pairs[(k // 97) % len(pairs)]              # a new pair every 97 clocks
+            if rng.random() < 0.01:                              # and one-clock changes in between
+                dt, dtf = rng.choice(vals), rng.choice(vals)
+            brake = 1 if (trial % 2 and rng.random() < 0.02) else 0
+            sched.append((en, pole, dt, brake, mp, dtf))
+        for i in range(1, len(sched)):                           # braking requests in runs
+            if sched[i - 1][3] and rng.random() < 0.9:
+                sched[i] = sched[i][:3] + (1,) + sched[i][4:]
+        await tb.run(sched, f"asym trial {trial} pairs {pairs} mp {mp}")
+
+
+@cocotb.test()
+async def asym_corners(dut):
+    """Corner pairs (dt, dtf): zero on one edge (a swap there, a dead time on the other), 1 and 2 (the
+    flags' restart values), the maximum against 0 and against max - 1. Directed edges from the low side on:
+    a long high pole pulse (the high side on dt after the low side off, the low side dtf after the high
+    side off), then a high pole pulse of one clock (the high side on for max(dt, dtf)); then braking from
+    the high side on (the low side dtf after the high side off)."""
+    tb = DtTB(dut)
+    m = tb.max
+    pairs = [(0, 3), (3, 0), (1, 2), (2, 1), (0, 1), (1, 0), (m, 0), (0, m), (m, m - 1), (m - 1, m),
+             (min(5, m), min(9, m)), (min(9, m), min(5, m))]
+    for dt, dtf in sorted({p for p in pairs if p[0] != p[1]}):
+        w = max(dt, dtf)
+        lead = w + 3
+        sched = ([(1, 0, dt, 0, 0, dtf)] * lead + [(1, 1, dt, 0, 0, dtf)] * (3 * w + 5)
+                 + [(1, 0, dt, 0, 0, dtf)] * (2 * w + 4))
+        t1 = len(sched)
+        sched += [(1, 1, dt, 0, 0, dtf)] + [(1, 0, dt, 0, 0, dtf)] * (3 * w + 6)
+        t2 = len(sched)
+        sched += [(1, 1, dt, 0, 0, dtf)] * (2 * w + 4) + [(1, 1, dt, 1, 0, dtf)] * (w + 4)
+        trace = await tb.run(sched, f"dt={dt} dtf={dtf}")
+        lo_off = lead + 1                                  # the low side turns off one clock after the request
+        hi_on = lo_off + dt
+        assert trace[hi_on] == (1, 0) and trace[hi_on - 1] == ((0, 0) if dt else (0, 1)), \
+            f"dt={dt} dtf={dtf}: high side on at {hi_on}? {trace[lead:hi_on + 2]}"
+        hi_off = lead + 3 * w + 5 + 1
+        assert trace[hi_off - 1] == (1, 0) and trace[hi_off + dtf] == (0, 1), \
+            f"dt={dt} dtf={dtf}: low side on at {hi_off + dtf}? {trace[hi_off - 1:hi_off + dtf + 2]}"
+        assert all(t == (0, 0) for t in trace[hi_off:hi_off + dtf])
+        # the one-clock pole pulse: the low side off at t1 + 1. dt > 0: the pole is back before the high
+        # side may turn on, so the low side returns after the falling dead time (a notch of max(dtf, 1));
+        # dt = 0: a swap to the high side, held for the minimum on-time max(dt, dtf) (at least one clock)
+        hi = [c for c in range(t1, t2 + 1) if trace[c][0]]
+        if dt == 0:
+            assert hi == list(range(t1 + 1, t1 + 1 + max(w, 1))), f"dt=0 dtf={dtf}: high pulse {hi}"
+        else:
+            n = max(dtf, 1)
+            assert hi == [], f"dt={dt} dtf={dtf}: a one-clock pole pulse reached the high side: {hi}"
+            assert trace[t1 + 1 + n] == (0, 1) and all(t == (0, 0) for t in trace[t1 + 1:t1 + 1 + n]), \
+                f"dt={dt} dtf={dtf}: notch {trace[t1:t1 + n + 3]}"
+        # braking from the high side: off on the next clock, the low side dtf later
+        tb_ = t2 + 2 * w + 4
+        assert trace[tb_] == (1, 0) and trace[tb_ + 1 + dtf] == (0, 1), \
+            f"dt={dt} dtf={dtf}: braking {trace[tb_:tb_ + dtf + 3]}"
 
 
 # the 1-bit build runs only the test made for it (the others need wider dead times)

@@ -182,10 +182,12 @@ def leg_on_intervals(edges, bit: int, snapshot: bool = False) -> list[tuple[int,
     return out
 
 
-def check_switching(edges, p: int, dt: int, legs=(0, 1, 2), snapshot: bool = False) -> None:
+def check_switching(edges, p: int, dt, legs=(0, 1, 2), snapshot: bool = False) -> None:
     """Exact clock counts from the pins: every rising edge of a high side is 2P after the previous one
-    (standing vector), and every turn-on of a gate comes exactly dt clocks after the other gate of its
-    leg turned off; never both gates of a leg on."""
+    (standing vector), and every turn-on of a gate comes exactly its dead time after the other gate of its
+    leg turned off (dt: one dead time, or (rising, falling): a high side rising after the low side, a low
+    side falling after the high side); never both gates of a leg on."""
+    dt, dtf = (dt, dt) if isinstance(dt, int) else dt
     for c, w in edges:
         for k in range(3):
             assert not ((w >> k) & 1 and (w >> (k + 3)) & 1), f"cycle {c}: leg {k} both gates on (0x{w:02x})"
@@ -200,7 +202,7 @@ def check_switching(edges, p: int, dt: int, legs=(0, 1, 2), snapshot: bool = Fal
                 assert a - lo_before[-1] == dt, f"leg {k}: lo off {lo_before[-1]} -> hi on {a}, dead time != {dt}"
             lo_after = [s for s, _ in lo if s >= b]
             if lo_after:
-                assert lo_after[0] - b == dt, f"leg {k}: hi off {b} -> lo on {lo_after[0]}, dead time != {dt}"
+                assert lo_after[0] - b == dtf, f"leg {k}: hi off {b} -> lo on {lo_after[0]}, dead time != {dtf}"
 
 
 async def start_against_model(dut, u: Uart, g: Gates, inp: core.Inputs, n: int) -> int:
@@ -223,7 +225,7 @@ async def id_and_reset_values(dut):
     registers read the idle core; unmapped addresses read 0; RO and unmapped addresses ignore writes."""
     u = await setup(dut)
     assert await u.read(R.ID) == 0x5356_5057
-    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0003
+    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0004
     assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": CNT_WIDTH, "freq_width": 24,
                                                         "phase_width": 34}
     assert await u.read(R.CLK_HZ) == CLK_HZ
@@ -269,7 +271,8 @@ async def registers_read_back(dut):
 async def writes_drive_the_gates(dut):
     """FREQ / M / PERIOD / DT / CTRL written over the UART: the gates switch exactly as the golden model
     says (every edge of all six gates, in clocks from the write of CTRL.en), with the written period and
-    dead time measured at the pins; a new PERIOD and DT while running; CTRL.en = 0 stops at once."""
+    dead time measured at the pins; a new PERIOD and DT while running, with a separate falling dead time
+    (DT.dtf, dtf_en; the compact system has no such fields: one dead time); CTRL.en = 0 stops at once."""
     u = await setup(dut)
     p, dt, m = P_RUN, 5, 0x4000
     await u.write(R.FREQ, 0)                                       # standing vector at angle 0
@@ -289,14 +292,15 @@ async def writes_drive_the_gates(dut):
     if "PERIOD_ACT" in V:
         assert await u.read(R.PERIOD_ACT) == p
 
-    p2, dt2 = P_RUN2, 9                                              # while running: new carrier, new dead time
+    p2, dt2, dtf2 = P_RUN2, 9, 14                                   # while running: new carrier, new dead times
     await u.write(R.PERIOD, p2)
-    await u.write(R.DT, dt2)
+    await u.write(R.DT, R.DT.encode(dt=dt2, dtf=dtf2, dtf_en=1))
     await clock_cycles(dut.clk, 4 * p2)
     g.clear()
     await clock_cycles(dut.clk, 2 * p2 * 6)
-    check_switching(g.edges, p2, dt2, snapshot=True)
-    assert await u.read(R.PERIOD) == p2 and await u.read(R.DT) == dt2
+    check_switching(g.edges, p2, (dt2, dt2 if COMPACT else dtf2), snapshot=True)
+    assert await u.read(R.PERIOD) == p2
+    assert await u.read(R.DT) == (dt2 if COMPACT else R.DT.encode(dt=dt2, dtf=dtf2, dtf_en=1))
     if "PERIOD_ACT" in V:
         assert await u.read(R.PERIOD_ACT) == p2
 

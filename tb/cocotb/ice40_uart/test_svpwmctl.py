@@ -246,7 +246,9 @@ def test_board_clock_from_clk_hz():
     (["set-period", "--fsw", "100"], f"out of range {fixed.MIN_PERIOD} .. 65535"),       # 240000 clocks
     (["set-period", "--clocks", str(fixed.MIN_PERIOD - 1)], f"out of range {fixed.MIN_PERIOD} .. 65535"),
     (["set-dt", "30"], "at most 1023 clocks"),
-    (["set-dt", "16.5"], "PERIOD >= 2 \\(DT \\+ MP\\) = 1584"),         # 792 clocks vs PERIOD 1536
+    (["set-dt", "16.5"], "PERIOD >= 2 \\(max\\(dt, dtf\\) \\+ MP\\) = 1584"),   # 792 clocks vs PERIOD 1536
+    (["set-dt", "1", "--dt-fall", "16.5"], "PERIOD >= 2 \\(max\\(dt, dtf\\) \\+ MP\\) = 1584"),   # the falling one
+    (["set-dt", "1", "--dt-fall", "30"], "falling dead time 30 us = 1440 clocks is out of range"),
     (["write", "CTRL.mode", "8"], "out of range 0 .. 7"),
     (["write", "FREQ.freq", "8388608"], "out of range -8388608 .. 8388607"),
     (["write", "STATUS.sector", "1"], "read-only"),
@@ -258,6 +260,44 @@ def test_bad_values_refused_nothing_written(argv, match):
     with pytest.raises(ValueError, match=match):
         cmd(fb, *argv)
     assert fb.writes == [], f"{argv}: wrote {fb.writes} although the value was refused"
+
+
+def test_falling_dead_time():
+    """set-dt US --dt-fall US: DT.dt = the rising, DT.dtf = the falling dead time, DT.dtf_en = 1; set-dt
+    without it: one dead time (dtf_en = 0, dtf 0); the period rules and the start check use both; status
+    shows both."""
+    fb = FakeBoard()
+    out = cmd(fb, "set-dt", "0.5", "--dt-fall", "0.75")
+    assert out == "DT = 24 clocks (0.5 us) rising, 36 clocks (0.75 us) falling (DT.dtf, dtf_en = 1)", out
+    assert fb.regs[R.DT.addr] == R.DT.encode(dt=24, dtf=36, dtf_en=1) == (1 << 31) | (36 << 16) | 24
+    st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
+    assert (st["dt_clocks"], st["dt_fall_clocks"], st["dt_us"], st["dt_fall_us"]) == ("24", "36", "0.5", "0.75")
+    # the period floor is 2 (max(dt, dtf) + MP): dtf 300 clocks needs PERIOD >= 600 (or refuses a shorter one)
+    cmd(fb, "set-dt", "0.5", "--dt-fall", f"{300 / 48:.4f}")
+    assert R.DT.decode(fb.regs[R.DT.addr]) == {"dt": 24, "dtf": 300, "dtf_en": 1}
+    with pytest.raises(ValueError, match="out of range 600 .. 65535"):
+        cmd(fb, "set-period", "--clocks", "599")
+    cmd(fb, "set-period", "--clocks", "600")
+    with pytest.raises(ValueError, match="PERIOD >= 2 \\(max\\(dt, dtf\\) \\+ MP\\) = 602"):
+        cmd(fb, "set-mp", f"{1 / 48:.4f}")            # 1 clock more: 2 (300 + 1) > 600
+    # back to one dead time: dtf_en cleared, dtf 0
+    assert cmd(fb, "set-dt", "1") == "DT = 48 clocks (1 us)"
+    assert fb.regs[R.DT.addr] == 48
+    st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
+    assert st["dt_fall_clocks"] == "48"
+    # a zero falling dead time: start refuses (as with DT 0) unless --allow-zero-dt
+    cmd(fb, "set-dt", "1", "--dt-fall", "0")
+    n = len(fb.writes)
+    with pytest.raises(ValueError, match="falling dead time DT.dtf"):
+        cmd(fb, "start")
+    assert len(fb.writes) == n
+    cmd(fb, "start", "--allow-zero-dt")
+    # locked: refused, nothing written
+    fb.status = R.STATUS.encode(locked=1)
+    n = len(fb.writes)
+    with pytest.raises(ValueError, match="locked"):
+        cmd(fb, "set-dt", "1", "--dt-fall", "2")
+    assert len(fb.writes) == n
 
 
 def test_locked_and_period_rules():
@@ -295,6 +335,10 @@ def test_compact_board():
     cmd(fb, "start")
     assert [fb.regs[r.addr] for r in (R.DT, R.PERIOD, R.FREQ, R.M, R.CTRL)] == \
         [24, 1200, 107374, 0x7333, R.CTRL.encode(en=1, pol=2)]
+    n = len(fb.writes)                                 # one dead time: no DT.dtf / dtf_en on this board
+    with pytest.raises(ValueError, match="DT.dtf, DT.dtf_en: not on this board"):
+        cmd(fb, "set-dt", "0.5", "--dt-fall", "1")
+    assert len(fb.writes) == n
     assert R.MP.addr not in fb.regs                    # no MP register on this board
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35

@@ -95,7 +95,7 @@ module tb_svpwm_bus_regs #(
     .ctrl_en_o(), .ctrl_sync_en_o(), .ctrl_trip_cbc_o(), .ctrl_safe_lo_o(), .ctrl_pol_o(), .ctrl_lock_o(),
     .ctrl_fault_clear_o(), .ctrl_mode_o(), .ctrl_upd_o(), .ctrl_dpwm_o(), .ctrl_adc_trig_o(),
     .freq_o(), .m_o(), .theta_o(), .v1_o(), .v2_o(), .vf_boost_o(), .vf_slope_o(), .vf_mmax_o(),
-    .period_o(), .dt_o(), .mp_o(), .presc_o(),
+    .period_o(), .dt_dt_o(), .dt_dtf_o(), .dt_dtf_en_o(), .mp_o(), .presc_o(),
     .status_running_i(status[0]), .status_sat_i(status[1]), .status_cfg_err_i(status[2]),
     .status_period_clamp_i(status[3]), .status_freq_clamp_i(status[4]), .status_fault_i(status[5]),
     .status_tripped_i(status[6]), .status_locked_i(status[7]), .status_sector_i(status[10:8]),

@@ -39,6 +39,8 @@ module tb_svpwm_core #(
   input  logic [15:0]                 m_i,
   input  logic [CntWidth-1:0]         period_i,
   input  logic [DtWidth-1:0]          dt_i,
+  input  logic [DtWidth-1:0]          dtf_i,
+  input  logic                        dtf_en_i,
   input  logic [DtWidth-1:0]          mp_i,
   input  logic                        fault_i,
   input  logic                        fault_clear_i,
@@ -114,6 +116,8 @@ module tb_svpwm_core #(
     .m_i            (m_i),
     .period_i       (period_i),
     .dt_i           (dt_i),
+    .dtf_i          (dtf_i),
+    .dtf_en_i       (dtf_en_i),
     .mp_i           (mp_i),
     .fault_i        (fault_i),
     .fault_clear_i  (fault_clear_i),
@@ -197,11 +201,12 @@ module tb_svpwm_core #(
   assign lock_violations_o = lock_violations;
 
   // ---- per-clock safety checker on the pins (polarity undone) ------------------------------------
-  // Uses the dead time and minimum pulse the core has in force (u_core.dt_q / mp_q, themselves checked
-  // against the model by the bit-exact tests) and the configuration registers for the lock check.
+  // Uses the dead times and minimum pulse the core has in force (u_core.dt_q / dtf_act / mp_q, themselves
+  // checked against the model by the bit-exact tests) and the configuration registers for the lock check.
   //   shoot_through_count:  clocks with both gates of a leg on
-  //   dead_time_violations: a gate turned on less than dt after the other gate of its leg turned off
-  //   short_pulse_count:    an on-pulse shorter than max(dt, mp), not started or cut by a forced state
+  //   dead_time_violations: a high side turned on less than dt (a low side: dtf) after the other gate of
+  //                         its leg turned off
+  //   short_pulse_count:    an on-pulse shorter than max(dt, dtf, mp), not started or cut by a forced state
   //                         (reset, en_i low, trip)
   //   off_violations:       a gate on during reset; a gate on while disabled and not tripped
   //   trip_violations:      fault_i high (or the trip latched) and a high side on, or a low side on
@@ -210,13 +215,13 @@ module tb_svpwm_core #(
   // Cost: the loop over the legs runs only in a clock where a gate turns on or off (a few per carrier
   // period); on-pulse lengths come from the turn-on clock, not from per-clock counters (Icarus runs the
   // whole core ~1.6x faster than with the per-clock loop).
-  logic [DtWidth-1:0] dt_dec, mp_dec;       // in force during the previous clock (the deciding clock)
+  logic [DtWidth-1:0] dt_dec, dtf_dec, mp_dec;   // in force during the previous clock (the deciding clock)
   logic [2:0]         hi_prev, lo_prev, tainted;
   logic               en_prev, trip_prev, forced_prev;
   longint unsigned    cyc, last_off [6];    // clock counter; last turn-off of each gate (hi 0..2, lo 3..5)
   longint unsigned    last_on [6];          // last turn-on of each gate
   logic               forced;
-  logic [2*DtWidth+3:0] lk_cfg, cfg;        // the lockable configuration: at the first locked clock, now
+  logic [3*DtWidth+3:0] lk_cfg, cfg;        // the lockable configuration: at the first locked clock, now
   logic               lk_valid;
   logic [31:0]        trip_violations, lock_violations;
   logic [2:0]         rise_hi, rise_lo, fall_hi, fall_lo;
@@ -226,7 +231,7 @@ module tb_svpwm_core #(
   assign rise_lo = gate_lo_o & ~lo_prev;
   assign fall_hi = hi_prev & ~gate_hi_o;
   assign fall_lo = lo_prev & ~gate_lo_o;
-  assign cfg     = {u_core.dt_cfg_q, u_core.mp_cfg_q, u_core.pol_q, u_core.safe_lo_q, u_core.cbc_q};
+  assign cfg     = {u_core.dt_cfg_q, u_core.dtf_cfg_q, u_core.mp_cfg_q, u_core.pol_q, u_core.safe_lo_q, u_core.cbc_q};
 
   initial begin
     shoot_through_count  = 0;
@@ -253,6 +258,7 @@ module tb_svpwm_core #(
   always @(posedge clk) begin
     cyc     <= cyc + 1;
     dt_dec  <= u_core.dt_q;
+    dtf_dec <= u_core.dtf_act;
     mp_dec  <= u_core.mp_q;
     hi_prev <= gate_hi_o;
     lo_prev <= gate_lo_o;
@@ -278,16 +284,16 @@ module tb_svpwm_core #(
     if ((rise_hi | rise_lo | fall_hi | fall_lo) != '0) begin
       for (int i = 0; i < 3; i++) begin
         // turn-on of the high side: the low side turned off at least dt clocks ago (dt in force when
-        // deciding); a direct swap (other gate on the clock before) needs dt = 0
+        // deciding); a direct swap (other gate on the clock before) needs dt = 0; the low side: dtf
         if (rise_hi[i] && dt_dec != '0 && (lo_prev[i] || cyc - last_off[i+3] < 64'(dt_dec))) begin
           dead_time_violations <= dead_time_violations + 1;
           $display("%t tb_svpwm_core: leg %0d high side on %0d clocks after the low side off, dt %0d",
                    $time, i, cyc - last_off[i+3], dt_dec);
         end
-        if (rise_lo[i] && dt_dec != '0 && (hi_prev[i] || cyc - last_off[i] < 64'(dt_dec))) begin
+        if (rise_lo[i] && dtf_dec != '0 && (hi_prev[i] || cyc - last_off[i] < 64'(dtf_dec))) begin
           dead_time_violations <= dead_time_violations + 1;
-          $display("%t tb_svpwm_core: leg %0d low side on %0d clocks after the high side off, dt %0d",
-                   $time, i, cyc - last_off[i], dt_dec);
+          $display("%t tb_svpwm_core: leg %0d low side on %0d clocks after the high side off, dtf %0d",
+                   $time, i, cyc - last_off[i], dtf_dec);
         end
         if (fall_hi[i]) last_off[i]   <= cyc;
         if (fall_lo[i]) last_off[i+3] <= cyc;
@@ -295,8 +301,10 @@ module tb_svpwm_core #(
         if (rise_lo[i]) last_on[i+3]  <= cyc;
         // on-pulse length (clocks from the turn-on to the turn-off): a pulse is exempt if a forced state
         // started it, cut it or happened in it
-        if (((fall_hi[i] && (cyc - last_on[i] < 64'(dt_dec) || cyc - last_on[i] < 64'(mp_dec)))
-             || (fall_lo[i] && (cyc - last_on[i+3] < 64'(dt_dec) || cyc - last_on[i+3] < 64'(mp_dec))))
+        if (((fall_hi[i] && (cyc - last_on[i] < 64'(dt_dec) || cyc - last_on[i] < 64'(dtf_dec)
+                             || cyc - last_on[i] < 64'(mp_dec)))
+             || (fall_lo[i] && (cyc - last_on[i+3] < 64'(dt_dec) || cyc - last_on[i+3] < 64'(dtf_dec)
+                                || cyc - last_on[i+3] < 64'(mp_dec))))
             && !forced && !tainted[i])
           short_pulse_count <= short_pulse_count + 1;
         if (!forced && !forced_prev && (rise_hi[i] || rise_lo[i]))

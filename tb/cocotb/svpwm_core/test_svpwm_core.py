@@ -31,7 +31,7 @@ from cocotb.utils import get_sim_time
 from simrun import cocotb_tests, rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
-from svpwm_model.core import Inputs
+from svpwm_model.core import CoreModel, Inputs
 from svpwm_tb import CLK_NS, CoreTB
 from clocks import clock_cycles
 
@@ -162,6 +162,43 @@ async def dead_time_change_at_valley(dut):
     sched = [Inputs(FW(400.0), MW(1.0), *steps[k % len(steps)]) for k in range(n)]
     await tb.reset(sched[0])
     await check_run(tb, sched[0], sched, len(sched))
+
+
+@cocotb.test()
+async def asymmetric_dead_time(dut):
+    """Separate rising (dt_i) and falling (dtf_i, dtf_en_i = 1) dead times, changing at valleys: each
+    larger in turn, a zero on one edge (a swap there), dtf_en_i = 0 with another value on dtf_i (ignored),
+    a minimum pulse, a period too short for the larger dead time (raised to 2 (max(dt, dtf) + mp)), and
+    changes of dtf alone that force an update (the prescaler skips 3 of 4 valleys otherwise). Every gate
+    and pole edge and every period == model; the compact core ignores dtf (its model: one dead time).
+    Not vacuous: the model with dtf removed gives other gate edges (the full core), the same (compact)."""
+    tb = CoreTB(dut)
+    P = 600
+    steps = [dict(dt=6, dtf=20), dict(dt=20, dtf=6), dict(dt=0, dtf=9, mp=2), dict(dt=11, dtf=0),
+             dict(dt=9), dict(dt=5, dtf=31, mp=4), dict(dt=5, dtf=12, mp=4), dict(dt=5, dtf=12, mp=4),
+             dict(dt=10, dtf=150, period=280), dict(dt=10, dtf=40, period=280), dict(dt=40, dtf=10)]
+    n_each = 3 if ICARUS else 9
+    sched = [Inputs(FW(400.0), MW(0.9), **(dict(period=P, presc=3) | st)) for st in steps for _ in range(n_each)]
+    await tb.reset(sched[0])
+    rtl, exp = await check_run(tb, sched[0], sched, len(sched))
+    if not tb.compact:
+        assert sum(a != b for a, b in zip(exp.dt, exp.dtf)) > len(sched) // 2, "dt != dtf in too few periods"
+        k = next(i for i, u in enumerate(sched) if u.dtf == 150)
+        assert exp.period[k + 1] == 2 * (150 + 0), f"period {exp.period[k + 1]}: not raised for dtf 150"
+        # a change of dtf alone (dt, mp, period unchanged) forces an update at its valley
+        for i in range(1, len(sched)):
+            a, b = sched[i - 1], sched[i]
+            if (a.dt, a.mp, a.period) == (b.dt, b.mp, b.period) and a.dtf != b.dtf:
+                assert exp.valley[i + 1] in {u.load for u in exp.updates}, f"no forced update at valley {i + 1}"
+    else:
+        assert exp.dtf == exp.dt, "compact model: one dead time"
+    sym = CoreModel(compact=tb.compact)
+    sym.idle(fixed.ARM_CLOCKS + 2)
+    ref = sym.run(replace(sched[0], dtf=None), [replace(u, dtf=None) for u in sched], len(sched))
+    if tb.compact:
+        assert ref.gate_edges == exp.gate_edges, "compact: dtf changed the gates"
+    else:
+        assert ref.gate_edges != exp.gate_edges, "asymmetric dead times gave the symmetric gates"
 
 
 @cocotb.test()
@@ -397,7 +434,8 @@ async def dtc_sign_changes(dut):
     """Dead-time compensation with the current signs changing at every point of a period: double update
     (valley and peak samples), isign_i changed on random clocks of every half period and on the clocks
     around each sample point (two before, one before = the sampled clock, the sample clock itself), dtc_en_i
-    switched off and on again, dead time 24 (hd 12) with a minimum pulse, m from 0.05 to 1.0 so that the
+    switched off and on again, rising dead time 24 and falling 36 (hdr 12, hdf 18) with a minimum pulse, m from
+    0.05 to 1.0 so that the
     compensated values leave [0, P] and the minimum-pulse rule snaps them; == model (which takes isign as
     sampled in the clock before each sample point). The compact core has no compensation: its model ignores
     dtc and isign, and so must the RTL."""
@@ -406,7 +444,7 @@ async def dtc_sign_changes(dut):
     P, lead = 600, tb.model.lead
     n = 48 if ICARUS else 160
     ms = [MW(0.05), MW(0.5), MW(0.98), MW(1.0)]
-    base = lambda k, sgn: Inputs(freq=FW(700.0), m=ms[(k // 12) % 4], period=P, dt=24, mp=3,   # noqa: E731
+    base = lambda k, sgn: Inputs(freq=FW(700.0), m=ms[(k // 12) % 4], period=P, dt=24, dtf=36, mp=3,   # noqa: E731
                                  upd=fixed.UPD_BOTH, dtc=int(k % 40 < 32), isign=sgn)
     t = lambda k: fixed.START_DELAY + 2 * P * k                      # noqa: E731  (the period is constant)
     s_peak = lambda k: t(k) + P - lead                               # noqa: E731  sample points (S)

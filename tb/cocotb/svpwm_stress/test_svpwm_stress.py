@@ -2,8 +2,9 @@
 """Random stress of svpwm_core: random input ("register") writes at random moments of the period,
 random fault pulses (including sub-clock glitches), trip-mode / safe-state / polarity / lock changes,
 every input mode (invalid codes included), references beyond the hexagon, DPWM, update modes,
-prescaler, sync start, dead-time compensation with random current signs and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
-never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, mp) unless
+prescaler, sync start, dead-time compensation with random current signs, the six-step law, the volt-second
+carry and random resets, while the in-RTL checker of tb_svpwm_core watches the pins on every clock:
+never both gates of a leg on, dead time before every turn-on, no pulse shorter than max(dt, dtf, mp) unless
 a forced state made it, gates off in reset and while disabled, the trip forcing, the lock.
 
 The numbers of writes and clocks are logged and asserted (>= 10,000 writes on both simulators; the
@@ -50,8 +51,8 @@ class Stress:
         """One random 'register write' on the core's inputs."""
         d, rng = self.dut, self.rng
         what = rng.choices(["freq", "m", "period", "dt", "mp", "en", "cbc", "safe", "pol", "lock", "clear",
-                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync", "dtc"],
-                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2, 8])[0]
+                            "mode", "theta", "v", "vf", "dpwm", "upd", "presc", "adc", "sync", "dtc", "dtf"],
+                           weights=[14, 14, 14, 12, 8, 8, 3, 3, 3, 0.3, 4, 6, 6, 8, 3, 4, 4, 3, 1, 2, 8, 8])[0]
         if what == "freq":
             d.freq_i.value = rng.choice([rng.randint(-(1 << 23), (1 << 23) - 1), rng.randint(-200000, 200000), 0])
         elif what == "m":
@@ -62,6 +63,9 @@ class Stress:
             d.dt_i.value = self.rand_dt()
         elif what == "mp":
             d.mp_i.value = self.rand_dt()
+        elif what == "dtf":                                     # a separate falling dead time, or none
+            d.dtf_i.value = self.rand_dt()
+            d.dtf_en_i.value = 1 if rng.random() < 0.7 else 0
         elif what == "en":
             d.en_i.value = 1 if rng.random() < 0.8 else 0
         elif what == "cbc":
@@ -91,10 +95,14 @@ class Stress:
             d.presc_i.value = rng.choice([0, 0, 1, 3, rng.randint(0, 255)])
         elif what == "adc":
             d.adc_trig_i.value = rng.randint(0, 3)
-        elif what == "dtc":                                         # dead-time compensation, current signs
-            d.isign_i.value = rng.randint(0, 7)
+        elif what == "dtc":                                         # dead-time compensation, current signs,
+            d.isign_i.value = rng.randint(0, 7)                     # overmodulation law, volt-second carry
             if rng.random() < 0.3:
                 d.dtc_en_i.value = 1 if rng.random() < 0.7 else 0
+            if rng.random() < 0.2:
+                d.om_i.value = rng.randint(0, 1)
+            if rng.random() < 0.2:
+                d.vsc_en_i.value = 1 if rng.random() < 0.8 else 0
         else:                                                       # sync: a waiting core starts on sync_i
             d.sync_en_i.value = 1 if rng.random() < 0.3 else 0
             d.sync_i.value = rng.randint(0, 1)
@@ -139,11 +147,11 @@ async def random_stress(dut):
     mean_gap = 12 if icarus else 1100                 # clocks between actions (~10^7 clocks on Verilator)
     st = Stress(dut, seed=int(os.environ.get("STRESS_SEED", "20261122")))
     d = dut
-    for sig, v in (("en_i", 0), ("freq_i", 0), ("m_i", 0), ("period_i", 200), ("dt_i", 5), ("mp_i", 0),
+    for sig, v in (("en_i", 0), ("freq_i", 0), ("m_i", 0), ("period_i", 200), ("dt_i", 5), ("dtf_i", 0), ("dtf_en_i", 0), ("mp_i", 0),
                    ("fault_i", 0), ("fault_clear_i", 0), ("trip_cbc_i", 0), ("safe_lo_i", 0), ("pol_i", 0),
                    ("lock_i", 0), ("mode_i", 0), ("theta_i", 0), ("v1_i", 0), ("v2_i", 0), ("vf_boost_i", 0),
                    ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),
-                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("dtc_en_i", 0), ("isign_i", 0),
+                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("dtc_en_i", 0), ("isign_i", 0), ("om_i", 0), ("vsc_en_i", 1),
                    ("rst_ni", 0)):
         getattr(d, sig).value = v
     await clock_cycles(d.clk, 3)

@@ -34,7 +34,7 @@ module tb_svpwm_sync (
   svpwm_core u_master (
     .clk_i (clk), .rst_ni (rst_ni), .en_i (en_m_i), .mode_i (3'd0), .freq_i (freq_i), .m_i (m_i),
     .theta_i ('0), .v1_i ('0), .v2_i ('0), .vf_boost_i ('0), .vf_slope_i ('0), .vf_mmax_i ('0),
-    .dpwm_i (2'd0), .upd_i (2'd0), .presc_i ('0), .period_i (period_i), .dt_i (10'd5), .mp_i ('0),
+    .dpwm_i (2'd0), .upd_i (2'd0), .presc_i ('0), .period_i (period_i), .dt_i (10'd5), .dtf_i ('0), .dtf_en_i (1'b0), .mp_i ('0),
     .adc_trig_i (adc_trig_i), .om_i (1'b0), .vsc_en_i (1'b0), .dtc_en_i (1'b0), .isign_i (3'd0), .sync_en_i (1'b0), .sync_i (1'b0), .fault_i (1'b0),
     .fault_clear_i (1'b0), .trip_cbc_i (1'b0), .safe_lo_i (1'b0), .pol_i (2'b00), .lock_i (1'b0),
     .gate_hi_o (unused_hi_m), .gate_lo_o (unused_lo_m), .pole_o (), .carrier_o (carrier_m_o),
@@ -47,7 +47,7 @@ module tb_svpwm_sync (
   svpwm_core u_slave (
     .clk_i (clk), .rst_ni (rst_ni), .en_i (en_s_i), .mode_i (3'd0), .freq_i (freq_i), .m_i (m_i),
     .theta_i ('0), .v1_i ('0), .v2_i ('0), .vf_boost_i ('0), .vf_slope_i ('0), .vf_mmax_i ('0),
-    .dpwm_i (2'd0), .upd_i (2'd0), .presc_i ('0), .period_i (period_i), .dt_i (10'd5), .mp_i ('0),
+    .dpwm_i (2'd0), .upd_i (2'd0), .presc_i ('0), .period_i (period_i), .dt_i (10'd5), .dtf_i ('0), .dtf_en_i (1'b0), .mp_i ('0),
     .adc_trig_i (2'b00), .om_i (1'b0), .vsc_en_i (1'b0), .dtc_en_i (1'b0), .isign_i (3'd0), .sync_en_i (sync_en_s_i), .sync_i (sync_m_o), .fault_i (1'b0),
     .fault_clear_i (1'b0), .trip_cbc_i (1'b0), .safe_lo_i (1'b0), .pol_i (2'b00), .lock_i (1'b0),
     .gate_hi_o (gate_hi_s_o), .gate_lo_o (gate_lo_s_o), .pole_o (), .carrier_o (carrier_s_o),

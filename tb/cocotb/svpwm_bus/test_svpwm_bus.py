@@ -33,8 +33,9 @@ RO_MAP = {"status_running_i": "running_o", "status_sat_i": "sat_o", "status_cfg_
 
 def core_input(f: R.Field) -> str:
     """svpwm_core input driven by a writable field: ctrl_en_o -> en_i, freq_o -> freq_i, dt_dtf_o -> dtf_i
-    (the ports of a register with several fields carry its name first)."""
-    return f.port.removeprefix("ctrl_").removeprefix("dt_").removesuffix("_o") + "_i"
+    (the ports of a register with several fields carry its name first; DTC.isign drives isign_i)."""
+    return {"dtc_isign_o": "isign_i"}.get(f.port) or \
+        f.port.removeprefix("ctrl_").removeprefix("dt_").removesuffix("_o") + "_i"
 
 
 class TB:

@@ -8,7 +8,7 @@
 // Parameters:
 //   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
 //                continuous SVPWM, valley updates, no dead-time compensation; mode_i, theta_i, v1_i, v2_i,
-//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i, isign_i and vsc_off_i
+//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i, isign_i and vsc_en_i
 //                are ignored. The same calculator runs its FREQ-only program
 //                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
 //   CntWidth   - carrier / period / compare width (8..16)
@@ -28,11 +28,11 @@
 // Dead-time compensation (dtc_en_i): each phase's compare value moves by half the dead time against the
 // volt-seconds the dead time costs at that phase's current sign (isign_i): C - ceil(dt / 2) for a positive
 // current, C + ceil(dt / 2) for a negative one, before the minimum-pulse rule (fixed.dtc_shift).
-// Volt-second carry (vsc_off_i = 0): what the minimum-pulse rule drops or widens of a phase is added to its next
+// Volt-second carry (vsc_en_i): what the minimum-pulse rule drops or widens of a phase is added to its next
 // update (fixed.snap_carry), cleared while stopped or tripped and across a period change.
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
-// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_off_i) is sampled SampleLead =
+// vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_en_i) is sampled SampleLead =
 // svpwm_pkg::sample_lead(Compact) clocks before it (the calculator's program + load 1: 250, compact 226), in
 // the clock before count == SampleLead (down) / P - SampleLead (up). period_i, dt_i, dtf_i, mp_i, upd_i,
 // presc_i are sampled there before every valley (period_i as it was one clock earlier) and take effect at it
@@ -90,7 +90,7 @@ module svpwm_core #(
   input  logic                        dtc_en_i,        // dead-time compensation on (sampled with the reference)
   input  logic [2:0]                  isign_i,         // {c, b, a} phase current signs, 1 = negative (into
                                                        // the leg), sampled with the reference
-  input  logic                        vsc_off_i,       // 1: volt-second carry of the minimum-pulse rule off
+  input  logic                        vsc_en_i,        // volt-second carry of the minimum-pulse rule on
   input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
   input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
   input  logic                        sync_i,          // another core's sync_o (same clock domain)
@@ -415,7 +415,7 @@ module svpwm_core #(
       dtc_q   <= !Compact && dtc_en_i;
       isign_q <= isign_i;
       om_q    <= !Compact && om_i;
-      vsc_q   <= !Compact && !vsc_off_i;
+      vsc_q   <= !Compact && vsc_en_i;
     end
   end
 

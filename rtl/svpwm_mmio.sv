@@ -132,7 +132,7 @@ module svpwm_mmio #(
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
-    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_off_i (vsc_off), .upd_i (upd), .presc_i (presc),
+    .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_en_i (!vsc_off), .upd_i (upd), .presc_i (presc),
     .period_i (period_core), .dt_i (dt), .dtf_i (dtf), .dtf_en_i (dtf_en), .mp_i (mp), .dtc_en_i (dtc_en),
     .isign_i (isign), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
     .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),

@@ -23,7 +23,7 @@ fundamental vs command, largest line-voltage line below f_sw/2 (dBc), WTHD, phas
 target, compensated Fig. 9 low-order maximum within 6 dB of the dead-time-free run (stated, not checked).
 
 Volt-second carry of the minimum-pulse rule (issue 15 item 5(b), docs/demo.md): m = 0.90 ... 1.00 at 50 Hz,
-P = 1536, 2 revolutions, dead time 1 us (thr = 48 clocks, minimum pulse 0) with the carry off and on (vsc_off_i = 1 / 0), and
+P = 1536, 2 revolutions, dead time 1 us (thr = 48 clocks, minimum pulse 0) with vsc_en_i = 0 and 1, and
 dead time 0 as the reference; measured on the pole states (line a - b, ideal switches: the dead time acts
 only through the minimum-pulse rule): largest line below f_sw/2 (dBc), WTHD, fundamental vs m. Six-step
 overmodulation (item 5(c)): line fundamental from m = 1 to 0xFFFF with om_i = 1 (and om_i = 0 at four
@@ -102,7 +102,7 @@ DTC = [dict(name=f"dtc_{tag}_{case}", kind="dtc", group=tag, case=case, f_hz=f, 
 
 
 # Volt-second carry of the minimum-pulse rule (issue 15 item 5(b)): m = 0.90 ... 1.00 at 50 Hz, 2 revolutions
-# (625 carrier periods: no leakage), dead time 1 us and minimum pulse 0 (thr = 48 clocks), carry off (vsc_off_i = 1)
+# (625 carrier periods: no leakage), dead time 1 us and minimum pulse 0 (thr = 48 clocks), carry off (vsc_en_i = 0)
 # and on, and dead time 0 as the reference. Measured on the pole states (line a - b with ideal switches), as the
 # m sweep: the dead time acts there only through the minimum-pulse rule, which the carry is about. Runs that
 # equal one of the runs above (same inputs and window: Fig. 10 is the carry-off run at m = 0.9, the sweep's

@@ -94,7 +94,7 @@ class CoreTB:
         d.presc_i.value = u.presc
         d.dtc_en_i.value = u.dtc
         d.om_i.value = u.om
-        d.vsc_off_i.value = 1 - u.vsc
+        d.vsc_en_i.value = u.vsc
         d.isign_i.value = u.isign & 7
 
     def set_safety(self, fault=0, fault_clear=0, cbc=0, safe_lo=0, pol=0, lock=0) -> None:

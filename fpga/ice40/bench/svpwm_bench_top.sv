@@ -69,7 +69,7 @@ module svpwm_bench_top #(
     .dtc_en_i       (in_q[R + 115]),
     .isign_i        (in_q[R + 116 +: 3]),
     .om_i           (in_q[R + 119]),
-    .vsc_off_i      (in_q[R + 120]),
+    .vsc_en_i       (in_q[R + 120]),
     .period_i       (in_q[1 + FreqWidth + 16 +: CntWidth]),
     .dt_i           (in_q[1 + FreqWidth + 16 + CntWidth +: DtWidth]),
     .dtf_i          (in_q[F +: DtWidth]),

@@ -11,7 +11,7 @@ Environment (set by the scripts):
   clocks), ``dt`` (dead time, clocks) and optionally ``n_periods`` (default: one full revolution + 2
   periods), ``vcd`` (bool, default true), ``title`` (free text); and for the volt-second carry and
   overmodulation runs (issue 15 item 5(b), (c)): ``m_word`` (the UQ1.15 word itself, for m > 1), ``mp``
-  (minimum pulse, clocks), ``vsc`` (1: vsc_off_i = 0), ``om`` (om_i), ``spectra`` (line-voltage figures over the
+  (minimum pulse, clocks), ``vsc`` (vsc_en_i), ``om`` (om_i), ``spectra`` (line-voltage figures over the
   ``revs`` revolutions in the result, as the report's sweep: spectrum.figures), ``fund_ref`` (the expected
   line fundamental, default m), ``fund_check`` (false: the fundamental is reported, not checked).
 * ``SVPWM_DEMO_OUT``: directory for ``<name>.json`` (results) and ``<name>.vcd`` (gate waveforms).

@@ -31,11 +31,16 @@ RO_MAP = {"status_running_i": "running_o", "status_sat_i": "sat_o", "status_cfg_
           "period_act_i": "period_o"}
 
 
+# fields whose core input has another name, and CTRL.vsc_off, which drives the core's vsc_en_i inverted
+# (a field absent in the compact variant resets to 0: "off" is the field, "on" the port)
+OTHER_INPUT = {"dtc_isign_o": "isign_i", "ctrl_vsc_off_o": "vsc_en_i"}
+INVERTED = {"ctrl_vsc_off_o"}
+
+
 def core_input(f: R.Field) -> str:
     """svpwm_core input driven by a writable field: ctrl_en_o -> en_i, freq_o -> freq_i, dt_dtf_o -> dtf_i
-    (the ports of a register with several fields carry its name first; DTC.isign drives isign_i)."""
-    return {"dtc_isign_o": "isign_i"}.get(f.port) or \
-        f.port.removeprefix("ctrl_").removeprefix("dt_").removesuffix("_o") + "_i"
+    (the ports of a register with several fields carry its name first)."""
+    return OTHER_INPUT.get(f.port) or f.port.removeprefix("ctrl_").removeprefix("dt_").removesuffix("_o") + "_i"
 
 
 class TB:
@@ -61,7 +66,9 @@ class TB:
         await clock_cycles(d.clk, 2)
 
     def cin(self, f: R.Field) -> int:
-        return int(getattr(self.core, core_input(f)).value)
+        """The field's value as its core input carries it (inverted for CTRL.vsc_off -> vsc_en_i)."""
+        v = int(getattr(self.core, core_input(f)).value)
+        return 1 - v if f.port in INVERTED else v
 
     async def wr(self, reg: R.Register, **fields) -> None:
         await self.bus.write(reg.addr, reg.encode(**fields))

@@ -502,7 +502,7 @@ async def dtc_sign_changes(dut):
 
 @cocotb.test()
 async def volt_second_carry(dut):
-    """The minimum-pulse rule's volt-second carry (vsc_off_i = 0): pulses dropped and widened near duty 0 and 1 --
+    """The minimum-pulse rule's volt-second carry (vsc_en_i): pulses dropped and widened near duty 0 and 1 --
     m near 1 in SVPWM and m near 0 with DPWMMIN / DPWMMAX (two phases a few counts from a rail), dead time 24 +
     minimum pulse 6 (thr 30) -- a period change (no carry across it) and the carry switched off and on; == model
     on every edge; the model's carries chain from update to update (model/tests/test_carry.py: the average

@@ -102,7 +102,7 @@ class Stress:
             if rng.random() < 0.2:
                 d.om_i.value = rng.randint(0, 1)
             if rng.random() < 0.2:
-                d.vsc_off_i.value = 0 if rng.random() < 0.8 else 1
+                d.vsc_en_i.value = 1 if rng.random() < 0.8 else 0
         else:                                                       # sync: a waiting core starts on sync_i
             d.sync_en_i.value = 1 if rng.random() < 0.3 else 0
             d.sync_i.value = rng.randint(0, 1)
@@ -151,7 +151,7 @@ async def random_stress(dut):
                    ("fault_i", 0), ("fault_clear_i", 0), ("trip_cbc_i", 0), ("safe_lo_i", 0), ("pol_i", 0),
                    ("lock_i", 0), ("mode_i", 0), ("theta_i", 0), ("v1_i", 0), ("v2_i", 0), ("vf_boost_i", 0),
                    ("vf_slope_i", 0), ("vf_mmax_i", 0), ("dpwm_i", 0), ("upd_i", 0), ("presc_i", 0),
-                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("dtc_en_i", 0), ("isign_i", 0), ("om_i", 0), ("vsc_off_i", 0),
+                   ("adc_trig_i", 0), ("sync_en_i", 0), ("sync_i", 0), ("dtc_en_i", 0), ("isign_i", 0), ("om_i", 0), ("vsc_en_i", 1),
                    ("rst_ni", 0)):
         getattr(d, sig).value = v
     await clock_cycles(d.clk, 3)

@@ -179,7 +179,8 @@ async def brake_and_min_pulse(dut):
     tb = DtTB(dut)
     rng = random.Random(0xB4A4E + tb.W)
     for dt, mp in ((0, 0), (0, 5), (3, 0), (3, 9), (min(7, tb.max), min(2, tb.max)), (tb.max, tb.max),
-                   (0, 1), (1, 1), (1, 2)):         # mp = 1, 2: the flags' "count restarts at 1" values
+                   (0, 1), (1, 1), (1, 2), (2, 3), (0, 3)):   # mp = 1, 2: the flags' "count restarts at 1"
+        #                                             values; mp = 3 > dt: the minimum pulse alone decides
         base = random_sched(rng, lambda i: dt, 40 if tb.icarus else 100, 4 * max(dt, mp) + 8)
         sched = []
         for en, pole, d_ in base:

@@ -882,6 +882,14 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
             g.write(R_MAX)
     # ---- compare values (fixed.dwell_compare): A = (T1 P) >> 8, B = (T2 P) >> 8, C = ((P+1) 2^8 +- ..) >> 9 --
     # lo = min or q, hi = max or 2^16 - q (capped at 0xFFFF by sat16); S = lo8 + hi8, Dm = hi8 - lo8
+    def sum_diff():                                       # ACC = hi8, R_Y = lo8 -> R_A = S, R_Z = Dm
+        g.write(R_Z)
+        g.add(ram(R_Y))                                   # S
+        g.write(R_A)
+        g.load(ram(R_Z))
+        g.add(ram(R_Y, inv=True))                         # Dm
+        g.write(R_Z)
+
     if dsp and not compact:
         # six-step law (fixed.hex_clamp): q' = max(0, 2^15 - round(g (2^15 - q) / 2^8)) (g = 2^8: q' = q); the
         # products 2^8 P (the base), lo P and hi P follow on the multiplier with MB = P
@@ -909,12 +917,7 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.write(R_Y)
         g.wait(th + g.mul_lat + 1)                        # (the lo product stays selectable until then)
         g.load(prod(PSH8, rnd=False))                     # hi8
-        g.write(R_Z)
-        g.add(ram(R_Y))                                   # S
-        g.write(R_A)
-        g.load(ram(R_Z))
-        g.add(ram(R_Y, inv=True))                         # Dm
-        g.write(R_Z)
+        sum_diff()
         r_base = R_P2H
     else:
         rl = g.mul(ram(R_MIN, rc=RC_C, ci=F_SATN), inp(IN_PERIOD))
@@ -923,13 +926,8 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.write(R_Y)
         rh = g.mul(ram(R_MAX, rc=RC_C, ci=F_SATN), inp(IN_PERIOD))
         g.wait(rh)
-        g.load(prod(PSH8, rnd=False))
-        g.write(R_Z)
-        g.add(ram(R_Y))                                   # S
-        g.write(R_A)
-        g.load(ram(R_Z))
-        g.add(ram(R_Y, inv=True))                         # Dm
-        g.write(R_Z)
+        g.load(prod(PSH8, rnd=False))                     # hi8
+        sum_diff()
         # (P + 1) 2^8
         g.load(inp(IN_PERIOD))
         for _ in range(8):

@@ -429,27 +429,23 @@ def main(argv=None) -> int:
             print("  " + line)
     import report as rep
     by_name = {r["point"]["name"]: r for r in results}
-    if any(p.get("study") == "vsc" for p in points) or any(a in by_name for a in alias.values()):
-        sm = rep.vsc_summary(by_name, VSC, alias)
+    studies = (("vsc", "volt_second_carry", lambda: rep.vsc_summary(by_name, VSC, alias), rep.vsc_table,
+                rep.vsc_verdict, any(a in by_name for a in alias.values()),
+                "volt-second carry of the minimum-pulse rule: 50 Hz, P = 1536, dead time 1 us (thr = 48 clocks, "
+                "minimum pulse 0), pole states (line a - b, ideal switches), 2 revolutions per point"),
+               ("om", "overmodulation", lambda: rep.om_summary(by_name, om_points(), alias), rep.om_table,
+                rep.om_verdict, False,
+                "overmodulation: line fundamental (pole states, line a - b) vs m, 50 Hz, P = 1536, dead time 0, "
+                "2 revolutions, against ideal.overmod_fundamental"))
+    for study, key, summarise, table, verdict, also, title in studies:
+        if not (any(p.get("study") == study for p in points) or also):
+            continue
+        sm = summarise()
         if sm["rows"]:
-            summary["volt_second_carry"] = sm
+            summary[key] = sm
             print()
-            print("volt-second carry of the minimum-pulse rule: 50 Hz, P = 1536, dead time 1 us (thr = 48 clocks, "
-                  "minimum pulse 0), pole states (line a - b, ideal switches), 2 revolutions per point")
-            for line in rep.vsc_table(sm):
-                print("  " + line)
-            for line in rep.vsc_verdict(sm):
-                print("  " + line)
-    if any(p.get("study") == "om" for p in points):
-        sm = rep.om_summary(by_name, om_points(), alias)
-        if sm["rows"]:
-            summary["overmodulation"] = sm
-            print()
-            print("overmodulation: line fundamental (pole states, line a - b) vs m, 50 Hz, P = 1536, dead time 0, "
-                  "2 revolutions, against ideal.overmod_fundamental")
-            for line in rep.om_table(sm):
-                print("  " + line)
-            for line in rep.om_verdict(sm):
+            print(title)
+            for line in table(sm) + verdict(sm):
                 print("  " + line)
     summary["reused_runs"] = alias
     out = args.out.resolve() / "demo.json"

@@ -60,6 +60,16 @@ F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
 
 
+def compare_into(tb, rtl, exp, res: dict, fails: list) -> None:
+    """RTL == model on every edge (CoreTB.compare), recorded in res["rtl_equals_model"] and, if not, in fails."""
+    try:
+        tb.compare(rtl, exp)
+        res["rtl_equals_model"] = True
+    except AssertionError as e:
+        res["rtl_equals_model"] = False
+        fails.append(f"RTL != model: {e}")
+
+
 def default_periods(f_hz: float, period: int, revs: float = 1) -> int:
     """Carrier periods covering at least ``revs`` revolutions (+2 for the pipeline start)."""
     if f_hz == 0:
@@ -149,12 +159,7 @@ async def run_point(dut, pt: dict) -> None:
                modulated_periods=len(rtl.cmp))
 
     # ---- RTL == model, in-RTL checker --------------------------------------------------------------
-    try:
-        tb.compare(rtl, exp)
-        res["rtl_equals_model"] = True
-    except AssertionError as e:
-        res["rtl_equals_model"] = False
-        fails.append(f"RTL != model: {e}")
+    compare_into(tb, rtl, exp, res, fails)
     st, dtv = int(dut.shoot_through_count.value), int(dut.dead_time_violations.value)
     res["harness"] = dict(shoot_through_clocks=st, dead_time_violations=dtv)
     try:
@@ -470,12 +475,7 @@ async def run_dtc_point(dut, pt: dict) -> None:
                                  warmup_s=(t0 - 1 - fixed.START_DELAY) / F_CLK),
                      isign_changes=sum(1 for a, b in zip(inputs, inputs[1:]) if a.isign != b.isign),
                      gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges), failures=fails)
-    try:
-        tb.compare(rtl, exp)
-        res["rtl_equals_model"] = True
-    except AssertionError as e:
-        res["rtl_equals_model"] = False
-        fails.append(f"RTL != model: {e}")
+    compare_into(tb, rtl, exp, res, fails)
     h = dict(shoot_through_clocks=int(d.shoot_through_count.value),
              dead_time_violations=int(d.dead_time_violations.value),
              short_pulses=int(d.short_pulse_count.value))

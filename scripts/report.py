@@ -510,6 +510,8 @@ def vsc_summary(by_name: dict, grid: list[dict], alias: dict | None = None) -> d
             fundamental=L["fundamental"], fund_err=L["fundamental"] / pt["m"] - 1,
             low_order_max_dbc=L["low_order_max_dbc"], low_order_max_at_hz=L["low_order_max_at_hz"],
             low_order_rss_dbc=L["low_order_rss_dbc"], wthd=L["wthd"], thd=L["thd"], h_max=L["h_max"],
+            low_order_floor_dbc=S.low_order_floor_dbc(L["low_order_rss_dbc"], r["line_window"]["n_fund"],
+                                                      r["line_window"]["T"], F_CLK, r["f_sw_hz"]),
             low_order_max_below_1khz_dbc=r.get("line_low_order_max_below_1khz_dbc"),
             rtl_equals_model=r["rtl_equals_model"], table_i_failures=r["table_i"]["failures"],
             n_periods=r["n_periods"], sim_wall_s=r["sim_wall_s"])
@@ -525,11 +527,13 @@ def vsc_summary(by_name: dict, grid: list[dict], alias: dict | None = None) -> d
             if x is None:
                 continue
             x["low_vs_dt0_db"] = x["low_order_max_dbc"] - ref["low_order_max_dbc"]
+            x["floor_vs_dt0_db"] = x["low_order_floor_dbc"] - ref["low_order_max_dbc"]
             x["wthd_vs_dt0_rel"] = x["wthd"] / ref["wthd"] - 1
             x["wthd_vs_dt0_pp"] = 100 * (x["wthd"] - ref["wthd"])
-            c = per_case.setdefault(case, dict(n=0, low=[], wrel=[], wpp=[], fund=[]))
+            c = per_case.setdefault(case, dict(n=0, low=[], floor=[], wrel=[], wpp=[], fund=[]))
             c["n"] += 1
             c["low"].append((x["low_vs_dt0_db"], row["m"]))
+            c["floor"].append((x["floor_vs_dt0_db"], row["m"]))
             c["wrel"].append((x["wthd_vs_dt0_rel"], row["m"]))
             c["wpp"].append((x["wthd_vs_dt0_pp"], row["m"]))
             c["fund"].append((abs(x["fund_err"]), row["m"]))
@@ -539,7 +543,9 @@ def vsc_summary(by_name: dict, grid: list[dict], alias: dict | None = None) -> d
         verdict[case] = dict(
             points=c["n"],
             low_order=dict(worst_db=lo[0], at_m=lo[1], met=lo[0] <= VSC_TARGET_DB,
-                           points_met=sum(v <= VSC_TARGET_DB for v, _ in c["low"])),
+                           points_met=sum(v <= VSC_TARGET_DB for v, _ in c["low"]),
+                           floor_worst_db=max(c["floor"])[0], floor_at_m=max(c["floor"])[1],
+                           floor_points_over=sum(v > VSC_TARGET_DB for v, _ in c["floor"])),
             wthd_relative=dict(worst=wr[0], at_m=wr[1], met=wr[0] <= VSC_TARGET_WTHD,
                                points_met=sum(v <= VSC_TARGET_WTHD for v, _ in c["wrel"])),
             wthd_pp=dict(worst_pp=wp[0], at_m=wp[1], met=wp[0] <= 100 * VSC_TARGET_WTHD,
@@ -592,6 +598,11 @@ def vsc_verdict(sm: dict) -> list[str]:
         out.append(f"{lab}: low-order max within {sm['target_db']:g} dB of dead time 0: {mt(lo['met'])} "
                    f"({lo['points_met']}/{v['points']} points; worst {lo['worst_db']:+.1f} dB at m = {lo['at_m']:.2f}"
                    + ("" if lo["met"] else f", {lo['worst_db'] - sm['target_db']:.1f} dB over the target") + ")")
+        if case == "on" and lo["floor_points_over"]:
+            out.append(f"{lab}: at {lo['floor_points_over']}/{v['points']} points the low-order energy alone misses "
+                       f"it: its rss spread evenly over every line below f_sw/2 (spectrum.low_order_floor_dbc) would "
+                       f"still be up to {lo['floor_worst_db']:+.1f} dB from dead time 0 (m = {lo['floor_at_m']:.2f}); "
+                       f"an error feedback on per-period values only moves energy inside that band")
         out.append(f"{lab}: WTHD within {100 * sm['target_wthd_rel']:g} % (relative): {mt(wr['met'])} "
                    f"({wr['points_met']}/{v['points']}; worst {100 * wr['worst']:+.2f} % at m = {wr['at_m']:.2f}); "
                    f"read as percentage points: {mt(wp['met'])} (worst {wp['worst_pp']:+.4f} pp)")

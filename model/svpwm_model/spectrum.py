@@ -162,12 +162,26 @@ def figures(c: np.ndarray, n_fund: int, T: float, f_clk: float, f_sw: float, h_m
     other = (j >= 1) & (j != n_fund)
     thd = math.sqrt(float(np.sum(amp[other] ** 2))) / v1
     wthd = math.sqrt(float(np.sum((amp[other] / (j[other] / n_fund)) ** 2))) / v1
-    low = other & (j / T * f_clk < f_sw / 2)
+    low = low_order_mask(j, n_fund, T, f_clk, f_sw)
     k = int(np.argmax(np.where(low, amp, -1.0)))
     return Figures(fundamental=float(v1), phase_rad=float(np.angle(c[n_fund])), thd=float(thd), wthd=float(wthd),
                    h_max=jmax / n_fund, low_order_max_dbc=_db(amp[k] / v1),
                    low_order_max_at_hz=float(k / T * f_clk),
                    low_order_rss_dbc=_db(math.sqrt(float(np.sum(amp[low] ** 2))) / v1))
+
+
+def low_order_mask(j: np.ndarray, n_fund: int, T: float, f_clk: float, f_sw: float) -> np.ndarray:
+    """The low-order lines of a window of T clocks: 0 < j, j != n_fund, below f_sw/2."""
+    return (j >= 1) & (j != n_fund) & (j / T * f_clk < f_sw / 2)
+
+
+def low_order_floor_dbc(rss_dbc: float, n_fund: int, T: float, f_clk: float, f_sw: float) -> float:
+    """The smallest largest line that lines below f_sw/2 with a total (rss) of ``rss_dbc`` can have: the rss
+    spread evenly over all of them. What only moves the error in frequency inside the band (an error feedback
+    on per-carrier-period values: their spectrum has no frequency above f_sw/2) cannot go below it."""
+    n = int(np.count_nonzero(low_order_mask(np.arange(int(math.ceil(f_sw * T / f_clk)) + 1), n_fund, T, f_clk,
+                                            f_sw)))
+    return rss_dbc - 10 * math.log10(n)
 
 
 def leakage(n_fund: int, T: float, f_sw: float) -> float:

@@ -99,6 +99,24 @@ def test_figures_low_order_band():
     assert f.thd == pytest.approx(math.hypot(0.01, 0.1))
 
 
+def test_low_order_floor():
+    """The floor is the largest line when the band's rss is spread evenly over every line of it (48 lines:
+    j = 2 ... 49 below f_sw/2 = 50 Hz, j = 1 the fundamental), and below the largest line otherwise."""
+    T, f_clk, f_sw = 1000.0, 1000.0, 100.0
+    c = np.zeros(200, dtype=complex)
+    c[1] = 1.0
+    c[2:50] = 0.001
+    f = spectrum.figures(c, 1, T, f_clk, f_sw)
+    floor = spectrum.low_order_floor_dbc(f.low_order_rss_dbc, 1, T, f_clk, f_sw)
+    assert floor == pytest.approx(-60.0)
+    assert f.low_order_max_dbc == pytest.approx(-60.0)
+    c[2:50] = 0.0
+    c[30] = 0.01
+    f = spectrum.figures(c, 1, T, f_clk, f_sw)
+    floor = spectrum.low_order_floor_dbc(f.low_order_rss_dbc, 1, T, f_clk, f_sw)
+    assert floor == pytest.approx(-40.0 - 10 * math.log10(48))
+
+
 def test_error_feedback_round():
     """Error-feedback rounding: integers within 1 of the value, the running error sum within +-1/2 (so the
     mean is exact), and it differs from nearest rounding (a checker that cannot tell them apart would pass)."""

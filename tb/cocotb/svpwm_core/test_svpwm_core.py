@@ -504,8 +504,8 @@ async def dtc_sign_changes(dut):
 async def volt_second_carry(dut):
     """The minimum-pulse rule's volt-second carry (vsc_en_i): pulses dropped and widened near duty 0 and 1 --
     m near 1 in SVPWM and m near 0 with DPWMMIN / DPWMMAX (two phases a few counts from a rail), dead time 24 +
-    minimum pulse 6 (thr 30) -- a period change (no carry across it) and the carry switched off and on; == model
-    on every edge; the model's carries chain from update to update (model/tests/test_carry.py: the average
+    minimum pulse 6 (thr 30) -- a period change (no carry across it), the carry switched off and on, and a stop
+    holding a carry, then a restart at the same period (no carry into it); == model on every edge; the model's carries chain from update to update (model/tests/test_carry.py: the average
     follows the command)."""
     tb = CoreTB(dut)
     n = 60 if ICARUS else 200
@@ -515,14 +515,22 @@ async def volt_second_carry(dut):
         m, dp = ((MW(0.99), fixed.DPWM_OFF), (MW(0.02), fixed.DPWM_MIN), (MW(0.01), fixed.DPWM_MAX),
                  (MW(1.0), fixed.DPWM_OFF))[(k * 4) // n]
         per = P + 20 if (k * 8) // n == 5 else P                   # a period change and back
-        return Inputs(freq=FW(900.0), m=m, period=per, dt=24, mp=6, dpwm=dp, vsc=int(k % 50 < 45))
+        return Inputs(freq=FW(900.0), m=m, period=per, dt=24, mp=6, dpwm=dp, vsc=int((k + 5) % 50 < 45))
     sched = [u(k) for k in range(n)]
     await tb.reset(sched[0])
-    rtl, exp = await tb.run(sched[0], sched, n)
+    rtl, exp = await tb.run(sched[0], sched, n, stop=P // 2)       # stopped with a carry held ...
     tb.compare(rtl, exp)
-    tb.check_edges(rtl, exp, table_i=False)      # (the carry may reorder two phases within thr of each other)
+    tb.check_edges(rtl, exp, P // 2, table_i=False)   # (the carry may reorder two phases within thr of each other)
+    u2 = sched[-1]                                   # ... and restarted at the same period: no carry into it
+    tb.set_inputs(u2)
+    rtl2, exp2 = await tb.run(u2, const(u2), 12)
+    tb.compare(rtl2, exp2)
+    tb.check_edges(rtl2, exp2, table_i=False)
     if tb.compact:
         return
+    assert any(exp.updates[-1].carry) and exp2.updates[0].period == exp.updates[-1].period, \
+        "the stop held no carry to clear"
+    assert not any(exp2.updates[0].carry_in) and any(x.carry_in for x in exp2.updates)
     carried = [x for x in exp.updates if any(x.carry_in)]
     assert len(carried) > n // 4, f"only {len(carried)} updates with a carry"
     for a, b, ub in zip(exp.updates, exp.updates[1:], sched[1:]):      # the carry chains, and stops where due

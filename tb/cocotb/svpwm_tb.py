@@ -50,6 +50,7 @@ class Clock(NamedTuple):
     hi: int              # gate_hi_o {c, b, a} (1 = on, whatever the pin polarity)
     lo: int              # gate_lo_o
     pclamp: int          # period_clamp_o
+    carry: int           # the core's volt-second carry register (u_core.car_q, {c, b, a} packed)
 
 
 def _diff(name: str, got: list, exp: list) -> str:
@@ -146,7 +147,7 @@ class CoreTB:
         d.trace_i.value = 1
         await Timer(n * CLK_NS + 2, "ns")
         d.trace_i.value = 0
-        rows = [Clock(*(int(x, 16) for x in r[2:12])) for r in self._rec_lines()
+        rows = [Clock(*(int(x, 16) for x in r[2:13])) for r in self._rec_lines()
                 if r[0] == "C" and int(r[1]) - 1 > t_start]
         assert len(rows) >= n, f"per_clock: {len(rows)} clocks recorded, {n} expected (trace_i, +svpwm_rec?)"
         return rows[:n]

@@ -161,8 +161,9 @@ module tb_svpwm_core #(
   //   V t cmp sector period running sat         each rising edge of valley_o, values 1 ns after it
   //   P t cmp running                           each rising edge of peak_o, likewise
   //   U t                                       each rising edge of update_o, likewise
-  //   C t valley peak period adc carrier tripped fault hi lo pclamp  each rising clock edge while trace_i
-  //                                             is high (hi / lo: the gates as gate_hi_o / gate_lo_o),
+  //   C t valley peak period adc carrier tripped fault hi lo pclamp carry  each rising clock edge while
+  //                                             trace_i is high (hi / lo: the gates as gate_hi_o / gate_lo_o;
+  //                                             carry: the core's volt-second carry register car_q),
   //                                             likewise
   //                                             (for short per-clock checks without a Python wake per clock)
   // 1 ns after a rising clock edge every output has settled (what cocotb reads in ReadOnly after the
@@ -194,8 +195,8 @@ module tb_svpwm_core #(
   end
   always @(posedge clk) if (rec_fd != 0 && trace_i === 1'b1) begin
     #1;
-    $fwrite(rec_fd, "C %0d %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h\n", $time, valley_o, peak_o, period_o,
-            adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o);
+    $fwrite(rec_fd, "C %0d %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h\n", $time, valley_o, peak_o, period_o,
+            adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o, u_core.car_q);
     $fflush(rec_fd);
   end
   assign trip_violations_o = trip_violations;

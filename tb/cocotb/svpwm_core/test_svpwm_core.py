@@ -604,6 +604,43 @@ async def volt_second_carry(dut):
     tb.dut._log.info("%d updates with a carry in of %d", len(carried), len(exp.updates))
 
 
+@cocotb.test()
+async def carry_cleared_by_trip(dut):
+    """A trip clears the volt-second carry (the core's carry register, recorded per clock): with a carry held
+    between two updates (m = 0.99, thr 30), a cycle-by-cycle trip clears it from the third edge after fault_i
+    rises (the dead-time FSMs' trip, two edges after it, then the register), it stays 0 until the release
+    (the first valley with the fault low), and a carry comes back after it. The compact core has no carry:
+    its register stays 0."""
+    tb = CoreTB(dut)
+    P = 400
+    u = Inputs(freq=FW(900.0), m=MW(0.99), period=P, dt=24, mp=6, vsc=1)
+    await tb.reset(u)
+    tb.set_safety(cbc=1)
+    rtl, exp = await tb.run(u, const(u), 6)
+    tb.compare(rtl, exp)
+    got = []
+    for _ in range(12):                                  # an update whose carry is not 0 (or none: compact)
+        got = await tb.per_clock(P)
+        if got[-1].carry:
+            break
+    if tb.compact:
+        assert not any(k.carry for k in got), "compact core: a carry"
+        return
+    held = got[-1].carry
+    assert held, "no update with a carry in 12 half periods"
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 1
+    got = await tb.per_clock(3)
+    await FallingEdge(dut.clk)
+    dut.fault_i.value = 0
+    assert [k.carry for k in got] == [held, held, 0], \
+        f"carry in the 3 clocks after fault_i rose: {[hex(k.carry) for k in got]}, expected {hex(held)} twice, then 0"
+    got = await tb.per_clock(6 * P)
+    rel = [k.tripped for k in got].index(0)              # released after the first valley with the fault low
+    assert all(k.carry == 0 for k in got[:rel]), f"carry while tripped: {sorted({hex(k.carry) for k in got[:rel]})}"
+    assert any(k.carry for k in got[rel:]), "no carry after the release"
+    assert int(dut.trip_violations_o.value) == 0
+
 # ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two
 # builds (full, compact) are made once per simulator and shared by their items (simrun.run_sim).
 NARROW = "narrow_freq_word"                 # the freq16 build's own test

@@ -269,6 +269,11 @@ async def full_only_inputs(dut):
         assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
 
 
+# the outputs that are 0 in reset (a valid configuration, en_i high): every status output and the gates
+RESET_ZERO_OUTPUTS = ("running_o", "update_o", "sat_o", "cfg_err_o", "period_clamp_o", "freq_clamp_o", "fault_o",
+                      "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")
+
+
 @cocotb.test()
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
@@ -304,8 +309,7 @@ async def config_and_safety(dut):
     await clock_cycles(dut.clk, 3)
     await FallingEdge(dut.clk)
     # in reset (valid configuration, en_i high): every status output and every gate is at its reset value 0
-    status = {n: int(getattr(dut, n).value) for n in ("running_o", "update_o", "sat_o", "cfg_err_o",
-              "period_clamp_o", "freq_clamp_o", "fault_o", "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")}
+    status = {n: int(getattr(dut, n).value) for n in RESET_ZERO_OUTPUTS}
     assert not any(status.values()), f"outputs in reset: {status}"
     dut.rst_ni.value = 1
     got0 = await tb.per_clock(fixed.ARM_CLOCKS + 2)
@@ -422,8 +426,7 @@ async def config_and_safety(dut):
     tb.set_inputs(brk)
     dut.rst_ni.value = 0
     await Timer(2, "ns")
-    status = {n: int(getattr(dut, n).value) for n in ("running_o", "update_o", "sat_o", "cfg_err_o",
-              "period_clamp_o", "freq_clamp_o", "fault_o", "tripped_o", "locked_o", "gate_hi_o", "gate_lo_o")}
+    status = {n: int(getattr(dut, n).value) for n in RESET_ZERO_OUTPUTS}
     assert not any(status.values()), f"outputs 2 ns into a reset pulse without a clock edge: {status}"
     dut.rst_ni.value = 1
     got = await tb.per_clock(fixed.ARM_CLOCKS + 2)

@@ -9,8 +9,10 @@
 // dead time, so no runt pulse reaches a gate. (svpwm_calc's minimum-pulse rule already keeps the pole
 // pulses long enough; this is the last-stage guarantee.)
 // en_i low turns both gates off on the next clock, whatever the state (safety before pulse length).
-// Reset turns both gates off and the dead time counts from its release, so a reset in mid-pulse
-// is followed by the full dead time too.
+// Reset turns both gates off and counts as a turn-off of unknown dead time: the dead-time registers
+// that fed this leg before the reset are cleared by it too, so after the release no gate turns on
+// before the counter has saturated, 2^DtWidth - 1 clocks (the longest dead time any configuration can
+// hold): a gate turns on at the earliest in the 2^DtWidth-th clock after the release (rst_hold_q).
 // brake_i (active braking, the trip safe state "low sides on"): the high side turns off on the next
 // clock, the low side turns on once both have been off for dtf_i -- braking never skips the dead time.
 // A zero dead time for an edge: that edge's gate turns on in the clock the other turns off (no dead
@@ -72,6 +74,7 @@ module deadtime #(
   logic               held_on_stay_d, held_on_stay_q, mp_stay;
   logic               dtr_le1_d, dtr_le1_q, dtf_le1_d, dtf_le1_q, on_le1_d, on_le1_q;
   logic               dtzr_d, dtzr_q, dtzf_d, dtzf_q;  // dt / dtf == 0 (a gate swaps straight to the other)
+  logic               rst_hold_d, rst_hold_q;  // since reset the counter has not saturated (nothing turns on)
   logic               held_r, held_f, held_on;
   logic [DtWidth:0]   dtr_sum, dtf_sum, mp_sum;
 
@@ -83,8 +86,11 @@ module deadtime #(
   assign dtf_le1_d      = (dtf_i >> 1) == '0;
   assign on_le1_d       = dtr_le1_d && dtf_le1_d && (mp_i >> 1) == '0;
   // x <= cnt1; after a change x <= 2 (written as == compares: a <= with a constant becomes a carry chain)
-  assign held_r_stay_d  = chg_q ? (dtr_le1_d || dt_i == Cnt1Chg) : !dtr_sum[DtWidth];
-  assign held_f_stay_d  = chg_q ? (dtf_le1_d || dtf_i == Cnt1Chg) : !dtf_sum[DtWidth];
+  // after a reset nothing is held until the next clock's count is CntMax (ncnt1_q == 0); both gates
+  // stay off meanwhile (nothing held: no change), so the count runs 0, 1, .. CntMax undisturbed
+  assign rst_hold_d     = rst_hold_q && ncnt1_q != '0;
+  assign held_r_stay_d  = !rst_hold_d && (chg_q ? (dtr_le1_d || dt_i == Cnt1Chg) : !dtr_sum[DtWidth]);
+  assign held_f_stay_d  = !rst_hold_d && (chg_q ? (dtf_le1_d || dtf_i == Cnt1Chg) : !dtf_sum[DtWidth]);
   assign mp_stay        = chg_q ? ((mp_i >> 1) == '0 || mp_i == Cnt1Chg) : !mp_sum[DtWidth];
   assign held_on_stay_d = held_r_stay_d && held_f_stay_d && mp_stay;
   assign dtzr_d         = (dt_i == '0);
@@ -138,6 +144,7 @@ module deadtime #(
       on_le1_q       <= 1'b0;
       dtzr_q         <= 1'b0;          // (read only while a gate is on)
       dtzf_q         <= 1'b0;
+      rst_hold_q     <= 1'b1;          // a reset: no turn-on before the count saturates
     end else begin
       hi_q           <= hi_d;
       lo_q           <= lo_d;
@@ -151,6 +158,7 @@ module deadtime #(
       on_le1_q       <= on_le1_d;
       dtzr_q         <= dtzr_d;
       dtzf_q         <= dtzf_d;
+      rst_hold_q     <= rst_hold_d;
     end
   end
 

@@ -147,7 +147,8 @@ class CoreModel:
         if min_period is None:
             min_period = fixed.LITE_MIN_PERIOD if compact else fixed.MIN_PERIOD
         self.min_period = min_period
-        self.legs = [LegState(0, 0, 0) for _ in range(3)]     # reset: off, dead time counts from release
+        self.legs = [LegState(0, 0, 0, True) for _ in range(3)]   # reset: off, the longest dead time
+        # counts from the release
 
     def run(self, idle: Inputs, inputs: Sequence[Inputs] | Callable[[int], Inputs], n_periods: int,
             stop: int | None = None,

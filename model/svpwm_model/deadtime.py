@@ -15,6 +15,9 @@ low side turns on dtf after the high side turned off); dtf = None means dtf = dt
   when wanted.
 * cnt is 0 only in the first clock after reset, and nothing is "held" then, even with dt == 0 (the RTL
   precomputes its compares a clock ahead; in that clock it has none).
+* a reset is a turn-off of unknown dead time (the dead-time registers are cleared with it): until the first
+  change after it (``hold``), nothing is held before cnt has saturated at ``sat`` (2^DtWidth - 1), so the
+  first turn-on after a reset release comes at the earliest at cycle sat + 1.
 
 Times are clock-cycle indices; a value "at cycle c" is the register value during cycle c.
 """
@@ -30,6 +33,7 @@ class LegState:
     hi: int = 0
     lo: int = 0
     cnt: int = 0        # saturating at sat
+    hold: bool = False  # since a reset, no change yet: nothing turns on before cnt == sat
 
     def key(self) -> tuple[int, int]:
         return self.hi, self.lo
@@ -42,8 +46,9 @@ def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0, dtf: int |
     if dtf is None:
         dtf = dt
     hi, lo = s.hi, s.lo
-    held_r = s.cnt >= max(dt, 1)
-    held_f = s.cnt >= max(dtf, 1)
+    floor = sat if s.hold else 1
+    held_r = s.cnt >= max(dt, floor)
+    held_f = s.cnt >= max(dtf, floor)
     held_on = s.cnt >= max(dt, dtf, mp, 1)
     if tgt == OFF:
         hi, lo = 0, 0
@@ -57,8 +62,9 @@ def step_cycle(s: LegState, tgt: int, dt: int, sat: int, mp: int = 0, dtf: int |
         hi = int(held_r)
     else:
         lo = int(held_f)
-    cnt = 1 if (hi, lo) != (s.hi, s.lo) else min(s.cnt + 1, sat)
-    return LegState(hi, lo, cnt)
+    chg = (hi, lo) != (s.hi, s.lo)
+    cnt = 1 if chg else min(s.cnt + 1, sat)
+    return LegState(hi, lo, cnt, s.hold and not chg)
 
 
 def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | None = None,
@@ -66,7 +72,7 @@ def simulate_cycles(tgt: list[int], dt: list[int], sat: int, init: LegState | No
                     dtf: list[int | None] | None = None) -> list[tuple[int, int]]:
     """Per-clock reference: gate (hi, lo) at cycles 0..len(tgt) given per-cycle target, rising dead time,
     minimum pulse (default 0) and falling dead time (default: the rising one)."""
-    s = init or LegState(0, 0, 0)          # reset: off, the dead time counts from the release
+    s = init or LegState(0, 0, 0, True)    # reset: off, the longest dead time counts from the release
     out = [s.key()]
     for i, (t, d) in enumerate(zip(tgt, dt)):
         s = step_cycle(s, t, d, sat, mp[i] if mp is not None else 0, dtf[i] if dtf is not None else None)
@@ -83,7 +89,7 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
     Returns the gate changes [(cycle, hi, lo), ...] (the new value holds from that cycle) for cycles in
     (start, end], and the state at cycle ``end``.
     """
-    s = LegState(*(init.hi, init.lo, init.cnt)) if init else LegState(0, 0, 0)
+    s = LegState(init.hi, init.lo, init.cnt, init.hold) if init else LegState(0, 0, 0, True)
     out: list[tuple[int, int, int]] = []
     c = start
     for i, ch in enumerate(changes):
@@ -103,7 +109,7 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
             elif s.hi or s.lo:                         # minimum on-time, then off (or swap)
                 dec = c + max(0, max(dt, dtf, mp, 1) - s.cnt)
             else:                                      # the edge's dead time, then on
-                dec = c + max(0, max(dt if tgt == HI else dtf, 1) - s.cnt)
+                dec = c + max(0, max(dt if tgt == HI else dtf, sat if s.hold else 1) - s.cnt)
             if dec is None or dec >= c_next:
                 s.cnt = min(s.cnt + (c_next - c), sat)
                 c = c_next
@@ -117,7 +123,7 @@ def simulate_events(changes: list[tuple], end: int, sat: int,
                 hi, lo = int(dt == 0), 0
             else:
                 hi, lo = int(tgt == HI), int(tgt in (LO, BRAKE))
-            s = LegState(hi, lo, 1)
+            s = LegState(hi, lo, 1, False)
             c = dec + 1
             out.append((c, hi, lo))
     return out, s

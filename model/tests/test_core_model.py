@@ -58,7 +58,14 @@ SCHED = [Inputs(FW(f), MW(m), p + O, dt) for f, m, p, dt in
 
 def test_valley_spacing_and_first_period():
     idle = Inputs(FW(120.0), MW(0.7), 50 + O, 3)
+    sat = (1 << fixed.DT_WIDTH) - 1
+    # started in the clock of the reset release, the reset hold keeps every gate off until cycle sat + 1
+    # (the counter saturated), although the first update comes earlier
     r = CoreModel().run(idle, SCHED, len(SCHED))
+    assert r.valley[1] + 2 < sat + 1 and r.gate_edges[0][0] == sat + 1
+    m = CoreModel()
+    m.idle(sat)                                   # the reset hold is over before the start
+    r = m.run(idle, SCHED, len(SCHED))
     assert r.valley[0] == fixed.START_DELAY and r.period[0] == 50 + O
     for n in range(len(SCHED)):
         assert r.valley[n + 1] - r.valley[n] == 2 * r.period[n]

@@ -34,7 +34,7 @@ def to_changes(tgt, dt, start=0):
 
 
 def cycles_state(tgt, dt, sat, init=None):
-    s = LegState(init.hi, init.lo, init.cnt) if init else LegState(0, 0, 0)     # the reset state
+    s = LegState(init.hi, init.lo, init.cnt, init.hold) if init else LegState(0, 0, 0, True)   # reset state
     for t, d in zip(tgt, dt):
         s = step_cycle(s, t, d, sat)
     return s
@@ -67,6 +67,8 @@ def test_events_equal_cycles_random(sat):
         if trial % 3 == 1:                 # also from a non-reset state
             init = cycles_state(tgt[:7], dt[:7], sat)
             tgt, dt = tgt[7:] or [LO], dt[7:] or [0]
+        elif trial % 3 == 2:               # and from a long idle (the reset hold over)
+            init = LegState(0, 0, sat)
         start = rng.choice((0, 0, 123))
         end = start + len(tgt)
         exp = simulate_cycles(tgt, dt, sat, init)
@@ -76,7 +78,7 @@ def test_events_equal_cycles_random(sat):
         got = events_to_cycles(ev, end, init.key() if init else (0, 0), start)
         assert got == exp, f"trial {trial}: first difference at cycle {next(i for i, (a, b) in enumerate(zip(got, exp)) if a != b)}"
         fin = cycles_state(tgt, dt, sat, init)
-        assert (state.hi, state.lo, state.cnt) == (fin.hi, fin.lo, fin.cnt)
+        assert (state.hi, state.lo, state.cnt, state.hold) == (fin.hi, fin.lo, fin.cnt, fin.hold)
         # no redundant events: every event changes the gates
         prev = init.key() if init else (0, 0)
         for _, h, lo in ev:
@@ -135,15 +137,16 @@ def test_pulse_dt_plus_one_stretched(dt):
 
 def test_dt_zero_swaps_same_clock():
     """dt = 0: the gates swap on one clock edge (never both on, never both off) and follow the pole
-    one clock later, however short the pulse. In the first clock after reset nothing is held yet: the
-    first gate turns on one clock later."""
+    one clock later, however short the pulse. After a reset nothing turns on before the counter has
+    saturated (the reset hold): the first gate turns on in cycle SAT10 + 1, whatever the dead time."""
     rng = random.Random(3)
-    tgt = [rng.choice((LO, HI)) for _ in range(500)]
+    tgt = [rng.choice((LO, HI)) for _ in range(SAT10 + 500)]
     out = simulate_cycles(tgt, [0] * len(tgt), SAT10)
-    assert out[0] == (0, 0) and out[1] == (0, 0)
-    for k, t in enumerate(tgt[1:], start=1):
+    assert all(g == (0, 0) for g in out[:SAT10 + 1])
+    for k, t in enumerate(tgt[SAT10:], start=SAT10):
         assert out[k + 1] == ((1, 0) if t == HI else (0, 1))
     ev, _ = simulate_events(to_changes(tgt, [0] * len(tgt)), len(tgt), SAT10)
+    assert ev[0][0] == SAT10 + 1
     swaps = [e for e in ev[1:]]
     assert all((h, lo) in ((1, 0), (0, 1)) for _, h, lo in swaps)
 
@@ -152,21 +155,31 @@ def test_off_turns_gates_off_next_clock():
     """OFF turns the on gate off on the next clock, even within the minimum on-time."""
     for dt in (0, 1, 5, SAT10):
         tgt = [HI] * (dt + 3) + [OFF] * 3
-        out = simulate_cycles(tgt, [0] * 2 + [dt] * (len(tgt) - 2), SAT10)
+        out = simulate_cycles(tgt, [0] * 2 + [dt] * (len(tgt) - 2), SAT10, IDLE)
         on = out.index((1, 0))
         tgt = [HI] * on + [OFF] * 3
-        out = simulate_cycles(tgt, [0] * 2 + [dt] * (len(tgt) - 2), SAT10)
+        out = simulate_cycles(tgt, [0] * 2 + [dt] * (len(tgt) - 2), SAT10, IDLE)
         assert out[on] == (1, 0) and out[on + 1] == (0, 0)
 
 
-@pytest.mark.parametrize("dt", [1, 7, 48])
-def test_reset_counts_as_turn_off(dt):
-    """After reset the dead time runs from the release: the first turn-on comes dt clocks later."""
-    tgt = [LO] * (2 * dt + 4)
-    out = simulate_cycles(tgt, [dt] * len(tgt), SAT10)
-    assert [c for c, g in enumerate(out) if g == (0, 1)][0] == dt + 1
-    ev, _ = simulate_events(to_changes(tgt, [dt] * len(tgt)), len(tgt), SAT10)
-    assert ev == [(dt + 1, 0, 1)]
+@pytest.mark.parametrize("sat", [SAT10, 15])
+@pytest.mark.parametrize("dt", [0, 1, 7, 15])
+def test_reset_counts_as_turn_off(dt, sat):
+    """A reset is a turn-off of unknown dead time (the dead-time registers are cleared with it): the
+    first turn-on comes when the counter has saturated, in cycle sat + 1 after the release, whatever the
+    dead time in force (here <= sat), and the hold ends with it: later edges use the dead time."""
+    for tgt0 in (LO, HI, BRAKE):
+        tgt = [tgt0] * (sat + 4) + [HI if tgt0 != HI else LO] * (3 * sat + 4)
+        out = simulate_cycles(tgt, [dt] * len(tgt), sat, mp=[0] * len(tgt))
+        on = [c for c, g in enumerate(out) if g != (0, 0)][0]
+        assert on == sat + 1, (tgt0, dt, sat, on)
+        ev, _ = simulate_events(to_changes(tgt, [dt] * len(tgt)), len(tgt), sat)
+        assert ev[0][0] == sat + 1 and events_to_cycles(ev, len(tgt)) == out
+        # after the hold the dead time is the one in force again: the other gate turns on dt clocks after
+        # the first turned off (a swap in the same clock when dt == 0)
+        other = [c for c, g in enumerate(out) if c > on and g == ((1, 0) if tgt0 != HI else (0, 1))][0]
+        off = [c for c, g in enumerate(out) if c > on and g != out[on]][0]
+        assert other - off == dt, (tgt0, dt, sat, on, off, other)
 
 
 # ---- separate rising (dt) and falling (dtf) dead times -------------------------------------------------
@@ -204,11 +217,13 @@ def test_events_equal_cycles_asymmetric(sat):
         tgt, dt, dtf, mp = random_inputs_asym(rng, sat, rng.randint(1, 40))
         init = None
         if trial % 3 == 1:
-            s = LegState(0, 0, 0)
+            s = LegState(0, 0, 0, True)
             for k in range(min(7, len(tgt))):
                 s = step_cycle(s, tgt[k], dt[k], sat, mp[k], dtf[k])
             init = s
             tgt, dt, dtf, mp = tgt[7:] or [LO], dt[7:] or [0], dtf[7:] or [3 % (sat + 1)], mp[7:] or [0]
+        elif trial % 3 == 2:               # from a long idle (the reset hold over)
+            init = LegState(0, 0, sat)
         start = rng.choice((0, 0, 77))
         end = start + len(tgt)
         exp = simulate_cycles(tgt, dt, sat, init, mp=mp, dtf=dtf)

@@ -125,6 +125,12 @@ class CoreTB:
         await clock_cycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
         self.model = CoreModel(compact=self.compact)
         self.idle_cycles = fixed.ARM_CLOCKS + 2       # clocks from reset release to cycle 0 of run() (en_i low)
+        self.t_idle = get_sim_time("ns")              # ... if run() is called now (later: more idle clocks)
+
+    def _idle_now(self) -> int:
+        """Clocks from the reset release (or the stop) to cycle 0 of a run() starting now: the model's dead-time
+        counters and the reset hold (2^DtWidth - 1 clocks) need them exactly."""
+        return self.idle_cycles + int(get_sim_time("ns") - self.t_idle) // CLK_NS
 
     def _cycle(self) -> int:
         return int(round(get_sim_time("ns") - self.t0)) // CLK_NS
@@ -175,7 +181,7 @@ class CoreTB:
             assert get(0) == idle, "inputs(0) must equal the idle inputs (period 0 samples them)"
         else:
             assert pget(0) == idle, "peak_inputs(0) must equal the idle inputs"
-        self.model.idle(self.idle_cycles)
+        self.model.idle(self._idle_now())
         exp = self.model.run(idle, inputs, n_periods, stop, peak_inputs)
         # where the inputs change: (cycle of the valley / peak, inputs set at the falling edge of that cycle)
         changes: list[tuple[int, Inputs]] = []
@@ -211,6 +217,7 @@ class CoreTB:
             d.en_i.value = 0
             await clock_cycles(d.clk, 4)
             self.idle_cycles = 4                    # cycles stop+1 .. stop+4 idle before the next run
+            self.t_idle = get_sim_time("ns")
         else:
             await FallingEdge(d.clk)                # the core runs on
         return self._recorded(n_periods, exp.end), exp

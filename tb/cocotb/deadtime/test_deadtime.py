@@ -137,11 +137,12 @@ def random_sched(rng: random.Random, dt_of, n_seg: int, max_len: int):
 
 @cocotb.test()
 async def reset_turn_off(dut):
-    """A reset in mid-pulse is a turn-off: after its release the other gate waits the full dead time
-    (with dt = 0 one clock: nothing is held in the first clock after reset)."""
+    """A reset in mid-pulse is a turn-off of unknown dead time (the reset hold): after its release nothing
+    turns on before the counter has saturated, i.e. the first gate turns on in clock 2^DtWidth (tb.max + 1)
+    after the release, whatever the dead time in force, also with braking; later edges use the dead time."""
     tb = DtTB(dut)
     d = dut
-    for dt in (0, 3, min(40, tb.max)):
+    for dt, brake in ((0, 0), (3, 1), (min(40, tb.max), 0), (tb.max, 1)):
         d.dt_i.value = dt
         d.dtf_i.value = dt
         d.mp_i.value = 0
@@ -152,7 +153,7 @@ async def reset_turn_off(dut):
         await FallingEdge(d.clk)
         await FallingEdge(d.clk)                    # a rising edge with the reset low
         d.rst_ni.value = 1
-        await clock_cycles(d.clk, 2 * dt + 3)
+        await clock_cycles(d.clk, tb.max + 2 * dt + 3)
         await FallingEdge(d.clk)
         assert str(d.hi_o.value) == "1", (f"dt={dt}: hi {d.hi_o.value} lo {d.lo_o.value} en {d.en_i.value} "
                                           f"brake {d.brake_i.value} pole {d.pole_i.value} dt {d.dt_i.value} "
@@ -161,15 +162,17 @@ async def reset_turn_off(dut):
         await FallingEdge(d.clk)
         assert (int(d.hi_o.value), int(d.lo_o.value)) == (0, 0)
         d.pole_i.value = 0
+        d.brake_i.value = brake                     # braking wants the low side at once: the hold decides
         d.rst_ni.value = 1
-        sched = [(1, 0, dt)] * (dt + 4)
-        exp = simulate_cycles([LO] * len(sched), [dt] * len(sched), tb.max)
-        for k in range(len(sched)):
+        n = tb.max + dt + 4
+        exp = simulate_cycles([BRAKE if brake else LO] * n, [dt] * n, tb.max)
+        for k in range(n):
             got = (int(d.hi_o.value), int(d.lo_o.value))
-            assert got == exp[k], f"dt={dt} clock {k} after reset: RTL {got}, model {exp[k]}"
+            assert got == exp[k], f"dt={dt} brake={brake} clock {k} after reset: RTL {got}, model {exp[k]}"
             await FallingEdge(d.clk)
         first_on = exp.index((0, 1))
-        assert first_on == max(dt, 1) + 1, first_on     # nothing is held in the first clock after reset
+        assert first_on == tb.max + 1, first_on     # the hold: the counter saturates first
+        d.brake_i.value = 0
 
 
 @cocotb.test()

@@ -26,14 +26,19 @@
 // formed from registers (en_i in the last LUT, brake_i / pole_i in the two last), and no counter or
 // flag register depends on them: the counter and its compares run a clock behind the decision for both
 // outcomes (the gates changed in the last clock or not) and a registered "changed" bit selects.
+// The reset hold of legs reset together is the same (their counters run alike until the hold ends), so
+// svpwm_core builds it once: leg a computes it (HoldIn = 0, hold_o), legs b and c take it (hold_i).
 // Parameters: DtWidth - dead-time / minimum-pulse width in bits (max 2^DtWidth - 1 clocks).
+//             HoldIn  - 0: the reset hold from this leg's counter (rst_hold_q); 1: from hold_i, the hold_o
+//                       of a leg with the same clock and reset and HoldIn = 0.
 // Latency: one clock from pole_i to a turn-off, 1 + dt (high side) / 1 + dtf (low side) clocks to the
 // complementary turn-on (the dead times in force).
 // Model: model/svpwm_model/deadtime.py (step_cycle, simulate_events).
 `default_nettype none
 
 module deadtime #(
-  parameter int DtWidth = 10
+  parameter int DtWidth = 10,
+  parameter bit HoldIn  = 1'b0
 ) (
   input  logic               clk_i,    // core clock
   input  logic               rst_ni,   // asynchronous reset, active low (both gates off)
@@ -43,6 +48,8 @@ module deadtime #(
   input  logic [DtWidth-1:0] dt_i,     // rising dead time (low off -> high on), clocks, from the NEXT clock
   input  logic [DtWidth-1:0] dtf_i,    // falling dead time (high off -> low on), clocks, next clock
   input  logic [DtWidth-1:0] mp_i,     // minimum on-pulse in clocks (on-time >= max(dt, dtf, mp)), next clock
+  input  logic               hold_i,   // HoldIn = 1: the reset hold of the next clock (another leg's hold_o)
+  output logic               hold_o,   // the reset hold of the next clock (nothing turns on while high)
   output logic               hi_o,     // high-side gate (registered), 1 = on
   output logic               lo_o      // low-side gate (registered), 1 = on
 );
@@ -78,7 +85,11 @@ module deadtime #(
   logic               held_r, held_f, held_on;
   logic [DtWidth:0]   dtr_sum, dtf_sum, mp_sum;
 
-  assign ncnt1_d        = chg_q ? ~Cnt1Chg2 : (ncnt1_q == '0) ? ncnt1_q : ncnt1_q - 1'b1;
+  logic [DtWidth:0]   ncnt1_dec;               // {borrow, ncnt1_q - 1}: borrow = (ncnt1_q == 0), saturated
+  logic               cnt_sat;
+  assign ncnt1_dec      = {1'b0, ncnt1_q} - 1'b1;
+  assign cnt_sat        = ncnt1_dec[DtWidth];
+  assign ncnt1_d        = chg_q ? ~Cnt1Chg2 : cnt_sat ? ncnt1_q : ncnt1_dec[DtWidth-1:0];
   assign dtr_sum        = {1'b0, dt_i} + {1'b0, ncnt1_q};       // no carry-out: dt <= ~ncnt1_q
   assign dtf_sum        = {1'b0, dtf_i} + {1'b0, ncnt1_q};
   assign mp_sum         = {1'b0, mp_i} + {1'b0, ncnt1_q};
@@ -88,7 +99,12 @@ module deadtime #(
   // x <= cnt1; after a change x <= 2 (written as == compares: a <= with a constant becomes a carry chain)
   // after a reset nothing is held until the next clock's count is CntMax (ncnt1_q == 0); both gates
   // stay off meanwhile (nothing held: no change), so the count runs 0, 1, .. CntMax undisturbed
-  assign rst_hold_d     = rst_hold_q && ncnt1_q != '0;
+  if (HoldIn) begin : gen_hold_in
+    assign rst_hold_d   = hold_i;
+  end else begin : gen_hold_own
+    assign rst_hold_d   = rst_hold_q && !cnt_sat;
+  end
+  assign hold_o         = rst_hold_d;
   assign held_r_stay_d  = !rst_hold_d && (chg_q ? (dtr_le1_d || dt_i == Cnt1Chg) : !dtr_sum[DtWidth]);
   assign held_f_stay_d  = !rst_hold_d && (chg_q ? (dtf_le1_d || dtf_i == Cnt1Chg) : !dtf_sum[DtWidth]);
   assign mp_stay        = chg_q ? ((mp_i >> 1) == '0 || mp_i == Cnt1Chg) : !mp_sum[DtWidth];
@@ -164,6 +180,10 @@ module deadtime #(
 
   assign hi_o = hi_q;
   assign lo_o = lo_q;
+
+  // HoldIn = 1 reads hold_i and not rst_hold_q (removed by synthesis), HoldIn = 0 the other way round
+  logic unused_hold;
+  assign unused_hold = hold_i ^ rst_hold_q;
 
 `ifdef FORMAL
   logic f_past_valid = 1'b0;

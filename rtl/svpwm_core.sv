@@ -718,8 +718,12 @@ module svpwm_core #(
 
   assign brake = trip_sync && safe_lo_q;
 
+  // the reset hold (no gate on for 2^DtWidth - 1 clocks after a reset) is the same for the three legs:
+  // leg a computes it from its counter, legs b and c take it
+  logic [2:0] leg_hold;
+
   for (genvar ph = 0; ph < 3; ph++) begin : gen_leg
-    deadtime #(.DtWidth(DtWidth)) u_deadtime (
+    deadtime #(.DtWidth(DtWidth), .HoldIn(ph != 0)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
       .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run: formal)
@@ -728,6 +732,8 @@ module svpwm_core #(
       .dt_i    (dt_q),              // deadtime reads them a clock ahead: new dead times and minimum
       .dtf_i   (dtf_act),           // pulse act on the gates from the clock after the valley
       .mp_i    (mp_q),
+      .hold_i  (leg_hold[0]),
+      .hold_o  (leg_hold[ph]),
       .hi_o    (hi_req[ph]),
       .lo_o    (lo_req[ph])
     );
@@ -753,8 +759,9 @@ module svpwm_core #(
   );
 
   // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16
+  // (and legs b and c pass on the hold of leg a: their hold_o is not read)
   logic unused_acc;
-  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1]};
+  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1], leg_hold[2:1]};
 
   assign pole_o         = pole;
   assign carrier_o      = count;

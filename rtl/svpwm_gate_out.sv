@@ -7,15 +7,15 @@
 //     low sides too unless the safe state is "low sides on" (safe_lo_i): the low sides are then turned
 //     on by the dead-time FSMs (trip_sync_o -> brake), after the dead time -- an asynchronous force
 //     could only turn a low side on without dead time, so it never turns anything on.
-//   * capture: a flop set asynchronously by fault_i (fault_cap_q) holds a fault until the first clock
-//     edge at which fault_i is low, so a pulse of any length, even one between two clock edges, keeps
-//     the gates safe until the synchroniser has it and always reaches the trip state (no pulse is lost).
-//   * the pins are forced safe by fault_i, the capture flop, both synchroniser flops and the latch, so
-//     the safe state has no break from the fault's rise until the trip releases: the latch follows the
-//     synchroniser two clock edges late, and what lies between is covered by the earlier stages.
+//   * the pins are forced safe by fault_i, both synchroniser flops and the latch, so a fault that a
+//     clock edge has seen holds the safe state without a break until the trip releases: the latch
+//     follows the synchroniser two clock edges late, and what lies between is covered by the earlier
+//     stages. A pulse that no clock edge sees (shorter than a clock, between two edges) forces the pins
+//     off while it lasts and is not latched (a glitch: the dead-time FSMs never see it).
 //   * latched mode (cbc_i = 0): a fault latches (after the 2-flop synchroniser); the gates stay safe
-//     until fault_i has returned low AND fault_clear_i is pulsed. A clear in the clock of a new fault
-//     pulse cannot lose it: the pins stay forced by the synchroniser, which sets the latch again.
+//     until fault_i has returned low AND fault_clear_i is pulsed. A clear at the clock edge that sees a
+//     new fault pulse cannot lose it: the pins stay forced by the synchroniser, which sets the latch
+//     again two edges later.
 //   * cycle-by-cycle mode (cbc_i = 1): the latch releases by itself at the next carrier valley
 //     (valley_i) at which the synchronised fault input is low.
 //   * trip_sync_o (the dead-time FSMs' trip: braking or all off) is the synchronised fault, the latch and
@@ -26,8 +26,6 @@
 //     upstream (it cannot happen with rtl/deadtime.sv; this stage does not rely on that).
 //   * polarity: pol_i[0] = 1 makes the high-side pins active low, pol_i[1] the low-side pins; "off"
 //     is the right level at the pins in every state, reset included (pol_i are straps/static config).
-// Restrictions: fault_cap_q has no reset (its only asynchronous control is fault_i; power-up value 0):
-// a fault that no clock edge has seen yet when rst_ni falls still trips the core after the release.
 // Latency: 0 clocks from fault_i to the pins (off); 2 clocks to fault_o / trip_sync_o.
 `default_nettype none
 
@@ -49,9 +47,7 @@ module svpwm_gate_out (
   output logic       tripped_o       // the safe state is forced (latch set or fault_i high)
 );
 
-  logic       fault_cap_q = 1'b0;    // fault_i since the last clock edge (set asynchronously; no reset,
-                                     // so its power-up value: 0, as every FPGA flop's)
-  logic [1:0] sync_q;                // fault_cap_q synchroniser
+  logic [1:0] sync_q;                // fault_i synchroniser
   logic       latch_d, latch_q, latch_prev_q;
   logic       safe, off_lo;
   logic [2:0] hi_ok, lo_ok, hi_on, lo_on;
@@ -65,25 +61,19 @@ module svpwm_gate_out (
     end
   end
 
-  // the capture: set while fault_i is high, cleared by the first clock edge that finds fault_i low
-  always_ff @(posedge clk_i or posedge fault_i) begin
-    if (fault_i) fault_cap_q <= 1'b1;
-    else         fault_cap_q <= 1'b0;
-  end
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       sync_q       <= '0;
       latch_q      <= 1'b0;
       latch_prev_q <= 1'b0;
     end else begin
-      sync_q       <= {sync_q[0], fault_cap_q};
+      sync_q       <= {sync_q[0], fault_i};
       latch_q      <= latch_d;
       latch_prev_q <= latch_q;
     end
   end
 
-  assign safe   = fault_i || fault_cap_q || sync_q[0] || sync_q[1] || latch_q;
+  assign safe   = fault_i || sync_q[0] || sync_q[1] || latch_q;
   assign off_lo = safe && !safe_lo_i;
   assign hi_ok  = hi_i & ~lo_i;      // interlock: both requested -> both off
   assign lo_ok  = lo_i & ~hi_i;

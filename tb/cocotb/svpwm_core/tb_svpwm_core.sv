@@ -340,7 +340,7 @@ module tb_svpwm_core #(
     if ((fault_i || u_core.u_gate_out.latch_q) && !u_core.safe_lo_q && gate_lo_o != '0)
       trip_violations <= trip_violations + 1;
     // lock: capture at the first locked clock, then nothing may change until reset
-    if (!rst_ni) lk_valid <= 1'b0;
+    if (rst_evt) lk_valid <= 1'b0;         // (a reset pulse between two clock edges unlocks too)
     else if (u_core.locked_q && !lk_valid) begin
       lk_valid <= 1'b1;
       lk_cfg   <= cfg;

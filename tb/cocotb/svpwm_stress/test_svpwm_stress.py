@@ -44,7 +44,7 @@ class Stress:
         self.resets = 0
         self.locked = False                 # lock_i written 1 since the last reset
         self.n = dict(reset_glitch=0, reset_glitch_gate_on=0, reset_over_edge=0, reset_fault=0,
-                      reset_fault_gate_on=0, reset_fault_past_hold=0, clear_fault=0, clear_fault_latched=0,
+                      reset_fault_gate_on=0, reset_fault_high_on=0, reset_fault_past_hold=0, clear_fault=0, clear_fault_latched=0,
                       short_fault=0, brake=0, brake_tripped=0, lock_big_dt=0)
         self.W_DT = len(dut.dt_i)
         self.W_P = len(dut.period_i)
@@ -166,11 +166,11 @@ class Stress:
     def gates_on(self) -> bool:
         return bool(int(self.dut.gate_hi_o.value) or int(self.dut.gate_lo_o.value))
 
-    async def until_gates_on(self, max_clocks: int = 1100) -> None:
-        """Up to max_clocks (in steps of 50) until a gate is on (a reset hold, a trip or a stop may keep them
-        off); returns at a falling clock edge."""
+    async def until_gates_on(self, max_clocks: int = 1100, high: bool = False) -> None:
+        """Up to max_clocks (in steps of 50) until a gate (high: a high side) is on (a reset hold, a trip or a
+        stop may keep them off); returns at a falling clock edge."""
         for _ in range(max_clocks // 50):
-            if self.gates_on():
+            if int(self.dut.gate_hi_o.value) if high else self.gates_on():
                 return
             await clock_cycles(self.dut.clk, 50)
             await FallingEdge(self.dut.clk)
@@ -208,9 +208,10 @@ class Stress:
         braking: 1 .. 20 clocks, past the reset hold (1000 .. 1100) or 1 .. 1500 after it."""
         d, rng = self.dut, self.rng
         if rng.random() < 0.8:
-            await self.until_gates_on()
+            await self.until_gates_on(high=True)                   # F1: a high side on at the reset
         self.n["reset_fault"] += 1
         self.n["reset_fault_gate_on"] += self.gates_on()
+        self.n["reset_fault_high_on"] += int(d.gate_hi_o.value) != 0
         d.safe_lo_i.value = int(rng.random() < 0.7)               # (taken after the reset: unlocked)
         when = rng.choice(["with", "with", "before", "in"])
         if when == "before":
@@ -346,7 +347,7 @@ async def random_stress(dut):
     dut._log.info("stress: issue-27 scenarios %s", st.n)
     assert all(x == 0 for x in v.values()), f"safety checker violations: {v}"
     assert st.writes >= 10000 and st.faults > 50 and st.resets > 5
-    mins = dict(reset_glitch=12, reset_glitch_gate_on=8, reset_over_edge=8, reset_fault=10, reset_fault_gate_on=5,
+    mins = dict(reset_glitch=12, reset_glitch_gate_on=8, reset_over_edge=8, reset_fault=10, reset_fault_gate_on=5, reset_fault_high_on=5,
                 reset_fault_past_hold=3, clear_fault=25, clear_fault_latched=8, short_fault=20, brake=20,
                 brake_tripped=3, lock_big_dt=4)
     low = {k: (st.n[k], m) for k, m in mins.items() if st.n[k] < m}

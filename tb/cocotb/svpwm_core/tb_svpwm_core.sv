@@ -221,21 +221,22 @@ module tb_svpwm_core #(
   //   trip_violations:      fault_i high (or the trip latched) and a high side on, or a low side on
   //                         while the safe state is "all off"
   //   lock_violations:      a locked configuration register changed
-//   reset_dt_violations:  a leg's first turn-on after a reset less than the dead time in force before the
-//                         reset (dt for a high side, dtf for a low side; the largest of every reset since the
-//                         leg last turned on) after the other gate turned off; a gate turned off by the reset
-//                         (a reset pulse between two clock edges included) counts as turned off at the edge
-//                         that sees it off. The core's dead-time registers are cleared by the reset, so this
-//                         uses the checker's own copy (checker state is never reset). Counted in
-//                         dead_time_violations as well.
-//   reset_hold_violations: a gate turned on at a clock edge less than CntMax + 1 = 2^DtWidth edges after a
-//                         reset release (edge 1: the first rising edge after it; rtl/deadtime.sv's reset hold:
-//                         the first turn-on is at edge CntMax + 1 at the earliest)
-//   trip_gap_violations:  a pin not safe (a high side on; a low side on unless safe_lo) in a clock of a trip:
-//                         from the first clock edge that sees the fault (fault_i high at it, or a rise of fault_i
-//                         since the edge before: the checker's own capture, so that it needs nothing of the
-//                         RTL's) as long as the synchroniser or the latch of svpwm_gate_out holds it, i.e. until
-//                         the release (the pins sampled at each rising edge, before it)
+  //   reset_dt_violations:  a leg's first turn-on after a reset less than the dead time in force before the
+  //                         reset (dt for a high side, dtf for a low side; the largest of every reset since
+  //                         the leg last turned on) after the other gate turned off. A gate the reset turned
+  //                         off (a reset pulse between two clock edges included) counts as off from the first
+  //                         edge after it (the conservative end of that clock). The core clears its dead-time
+  //                         registers with the reset: this uses the checker's own copy (checker state is never
+  //                         reset). Counted in dead_time_violations as well.
+  //   reset_hold_violations: a gate turned on at a clock edge less than CntMax + 1 = 2^DtWidth edges after a
+  //                         reset release (edge 1: the first rising edge after it; rtl/deadtime.sv's reset
+  //                         hold: the first turn-on is at edge CntMax + 1 at the earliest)
+  //   trip_gap_violations:  a pin not safe (a high side on; a low side on unless safe_lo) in a clock of a trip:
+  //                         from the first clock edge that sees the fault (fault_i high at it, or a rise of
+  //                         fault_i since the edge before: the checker's own capture, so that it needs nothing
+  //                         of the RTL's but the synchroniser and the latch) as long as svpwm_gate_out's
+  //                         synchroniser or latch holds it, i.e. until the release (the pins sampled at each
+  //                         rising edge, before it)
   // Cost: the loop over the legs runs only in a clock where a gate turns on or off (a few per carrier
   // period); on-pulse lengths come from the turn-on clock, not from per-clock counters (Icarus runs the
   // whole core ~1.6x faster than with the per-clock loop).
@@ -391,8 +392,10 @@ module tb_svpwm_core #(
                    cyc - rel_cyc, CntMax + 1);
         end
         if (rise_hi[i] || rise_lo[i]) rst_pend[i] <= 1'b0;
-        if (fall_hi[i]) last_off[i]   <= cyc;
-        if (fall_lo[i]) last_off[i+3] <= cyc;
+        // (a gate the reset turned off went off between the last edge and this one: counted as off from
+        // this edge on, the conservative end)
+        if (fall_hi[i]) last_off[i]   <= rst_evt ? cyc + 1 : cyc;
+        if (fall_lo[i]) last_off[i+3] <= rst_evt ? cyc + 1 : cyc;
         if (rise_hi[i]) last_on[i]    <= cyc;
         if (rise_lo[i]) last_on[i+3]  <= cyc;
         // on-pulse length (clocks from the turn-on to the turn-off): a pulse is exempt if a forced state

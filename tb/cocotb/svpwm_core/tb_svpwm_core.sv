@@ -2,8 +2,9 @@
 // tb_svpwm_core: simulation harness around svpwm_core. Generates the clock (10 ns) in SystemVerilog
 // (3x faster than a Python clock on Verilator), bundles the outputs cocotb watches by edges into one
 // word, and checks the gate pins on every clock: never both gates of a leg on, dead time before every
-// turn-on, no on-pulse shorter than max(dead time, minimum pulse) unless cut by a disable/trip/reset,
-// all gates off during reset and while disabled.
+// turn-on (across resets too), no on-pulse shorter than max(dead time, minimum pulse) unless cut by a
+// disable/trip/reset, all gates off during reset and while disabled, no turn-on in the reset hold, the
+// pins safe in every clock of a trip.
 `timescale 1ns / 1ps
 `default_nettype none
 
@@ -77,7 +78,10 @@ module tb_svpwm_core #(
   output logic [31:0]                 short_pulse_count,
   output logic [31:0]                 off_violations,
   output logic [31:0]                 trip_violations_o,
-  output logic [31:0]                 lock_violations_o
+  output logic [31:0]                 lock_violations_o,
+  output logic [31:0]                 reset_dt_violations_o,    // (below: the checks across a reset
+  output logic [31:0]                 reset_hold_violations_o,  //  and the trip gap)
+  output logic [31:0]                 trip_gap_violations_o
 );
 
   initial clk = 1'b0;
@@ -199,8 +203,11 @@ module tb_svpwm_core #(
             adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o, u_core.car_q);
     $fflush(rec_fd);
   end
-  assign trip_violations_o = trip_violations;
-  assign lock_violations_o = lock_violations;
+  assign trip_violations_o       = trip_violations;
+  assign lock_violations_o       = lock_violations;
+  assign reset_dt_violations_o   = reset_dt_violations;
+  assign reset_hold_violations_o = reset_hold_violations;
+  assign trip_gap_violations_o   = trip_gap_violations;
 
   // ---- per-clock safety checker on the pins (polarity undone) ------------------------------------
   // Uses the dead times and minimum pulse the core has in force (u_core.dt_q / dtf_act / mp_q, themselves
@@ -214,6 +221,22 @@ module tb_svpwm_core #(
   //   trip_violations:      fault_i high (or the trip latched) and a high side on, or a low side on
   //                         while the safe state is "all off"
   //   lock_violations:      a locked configuration register changed
+  //   reset_dt_violations:  a leg's first turn-on after a reset less than the dead time in force before the
+  //                         reset (dt for a high side, dtf for a low side; the largest of every reset since
+  //                         the leg last turned on) after the other gate turned off. A gate the reset turned
+  //                         off (a reset pulse between two clock edges included) counts as off from the first
+  //                         edge after it (the conservative end of that clock). The core clears its dead-time
+  //                         registers with the reset: this uses the checker's own copy (checker state is never
+  //                         reset). Counted in dead_time_violations as well.
+  //   reset_hold_violations: a gate turned on at a clock edge less than CntMax + 1 = 2^DtWidth edges after a
+  //                         reset release (edge 1: the first rising edge after it; rtl/deadtime.sv's reset
+  //                         hold: the first turn-on is at edge CntMax + 1 at the earliest)
+  //   trip_gap_violations:  a pin not safe (a high side on; a low side on unless safe_lo) in a clock of a trip:
+  //                         from the first clock edge that sees the fault (fault_i high at it, or a rise of
+  //                         fault_i since the edge before: the checker's own capture, so that it needs nothing
+  //                         of the RTL's but the synchroniser and the latch) as long as svpwm_gate_out's
+  //                         synchroniser or latch holds it, i.e. until the release (the pins sampled at each
+  //                         rising edge, before it)
   // Cost: the loop over the legs runs only in a clock where a gate turns on or off (a few per carrier
   // period); on-pulse lengths come from the turn-on clock, not from per-clock counters (Icarus runs the
   // whole core ~1.6x faster than with the per-clock loop).
@@ -230,7 +253,36 @@ module tb_svpwm_core #(
 
   // a reset pulse between two clock edges (asynchronous: no edge sees rst_ni low) forces like a sampled one
   int unsigned        rst_falls = 0, rst_falls_seen = 0;
-  always @(negedge rst_ni) rst_falls = rst_falls + 1;
+  // the dead times in force as a reset comes (the core clears its registers with it): the checker's dt_dec
+  // (in force in this clock) and, to be safe, the core's registers at the last falling clock edge out of reset
+  // (those of the next clock, unless the reset came before that edge); the largest over the resets no
+  // rising clock edge has seen yet
+  localparam logic [63:0] CntMax = (64'd1 << DtWidth) - 1;
+  logic [DtWidth-1:0] dt_live = '0, dtf_live = '0, rst_dt = '0, rst_dtf = '0;
+  always @(negedge clk) if (rst_ni === 1'b1) begin
+    dt_live  <= u_core.dt_q;
+    dtf_live <= u_core.dtf_act;
+  end
+  always @(negedge rst_ni) begin
+    if (rst_falls == rst_falls_seen) begin       // the edges saw the last one: start again
+      rst_dt  = '0;
+      rst_dtf = '0;
+    end
+    if (dt_live  > rst_dt)  rst_dt  = dt_live;
+    if (dt_dec   > rst_dt)  rst_dt  = dt_dec;
+    if (dtf_live > rst_dtf) rst_dtf = dtf_live;
+    if (dtf_dec  > rst_dtf) rst_dtf = dtf_dec;
+    rst_falls = rst_falls + 1;
+  end
+  // the reset's requirements, per leg until its first turn-on after the reset: the high side's, the low side's
+  logic [DtWidth-1:0] rq_hi [3], rq_lo [3];
+  logic [2:0]         rst_pend = '0;
+  logic               rst_prev = 1'b0, rst_evt, trip_chk;
+  longint unsigned    rel_cyc = 0;           // cyc at the first rising edge after the last reset release
+  logic [31:0]        reset_dt_violations = 0, reset_hold_violations = 0, trip_gap_violations = 0;
+  // the checker's own fault capture: every rise of fault_i, also one between two clock edges
+  int unsigned        fault_rises = 0, fault_rises_seen = 0;
+  always @(posedge fault_i) fault_rises = fault_rises + 1;
 
   assign forced  = !rst_ni || rst_falls != rst_falls_seen || !en_i || tripped_o;
   assign rise_hi = gate_hi_o & ~hi_prev;
@@ -258,7 +310,16 @@ module tb_svpwm_core #(
       last_off[i] = 0;
       last_on[i]  = 0;
     end
+    for (int i = 0; i < 3; i++) begin
+      rq_hi[i] = '0;
+      rq_lo[i] = '0;
+    end
   end
+
+  // a reset since the last edge or now; the trip as the checker sees it at this edge
+  assign rst_evt  = !rst_ni || rst_falls != rst_falls_seen;
+  assign trip_chk = fault_i || fault_rises != fault_rises_seen || u_core.u_gate_out.sync_q != '0
+                    || u_core.u_gate_out.latch_q;
 
   // Each counter counts clocks (at most one per clock, whichever legs violate in it).
   always @(posedge clk) begin
@@ -280,13 +341,22 @@ module tb_svpwm_core #(
     if ((fault_i || u_core.u_gate_out.latch_q) && !u_core.safe_lo_q && gate_lo_o != '0)
       trip_violations <= trip_violations + 1;
     // lock: capture at the first locked clock, then nothing may change until reset
-    if (!rst_ni) lk_valid <= 1'b0;
+    if (rst_evt) lk_valid <= 1'b0;         // (a reset pulse between two clock edges unlocks too)
     else if (u_core.locked_q && !lk_valid) begin
       lk_valid <= 1'b1;
       lk_cfg   <= cfg;
     end else if (lk_valid && lk_cfg != cfg)
       lock_violations <= lock_violations + 1;
     if ((gate_hi_o & gate_lo_o) != '0) shoot_through_count <= shoot_through_count + 1;
+    // the trip gap: the pins safe in every clock the trip holds
+    fault_rises_seen <= fault_rises;
+    if (trip_chk && (gate_hi_o != '0 || (!u_core.safe_lo_q && gate_lo_o != '0))) begin
+      trip_gap_violations <= trip_gap_violations + 1;
+      $display("%t tb_svpwm_core: tripped, gates hi %b lo %b (safe_lo %b)", $time, gate_hi_o, gate_lo_o,
+               u_core.safe_lo_q);
+    end
+    rst_prev <= rst_ni;
+    if (rst_ni && (rst_falls != rst_falls_seen || !rst_prev)) rel_cyc <= cyc;   // edge 1 after a release
     if (forced) tainted <= '1;
     if ((rise_hi | rise_lo | fall_hi | fall_lo) != '0) begin
       for (int i = 0; i < 3; i++) begin
@@ -302,8 +372,30 @@ module tb_svpwm_core #(
           $display("%t tb_svpwm_core: leg %0d low side on %0d clocks after the high side off, dtf %0d",
                    $time, i, cyc - last_off[i], dtf_dec);
         end
-        if (fall_hi[i]) last_off[i]   <= cyc;
-        if (fall_lo[i]) last_off[i+3] <= cyc;
+        // the first turn-on after a reset: the dead time in force before it as well
+        if (rise_hi[i] && rst_pend[i] && rq_hi[i] != '0 && (lo_prev[i] || cyc - last_off[i+3] < 64'(rq_hi[i]))) begin
+          dead_time_violations <= dead_time_violations + 1;
+          reset_dt_violations  <= reset_dt_violations + 1;
+          $display("%t tb_svpwm_core: leg %0d high side on %0d clocks after the low side off, dt %0d before a reset",
+                   $time, i, cyc - last_off[i+3], rq_hi[i]);
+        end
+        if (rise_lo[i] && rst_pend[i] && rq_lo[i] != '0 && (hi_prev[i] || cyc - last_off[i] < 64'(rq_lo[i]))) begin
+          dead_time_violations <= dead_time_violations + 1;
+          reset_dt_violations  <= reset_dt_violations + 1;
+          $display("%t tb_svpwm_core: leg %0d low side on %0d clocks after the high side off, dtf %0d before a reset",
+                   $time, i, cyc - last_off[i], rq_lo[i]);
+        end
+        // the reset hold: a turn-on at edge k after the release is seen here at edge k + 1, cyc = rel_cyc + k
+        if ((rise_hi[i] || rise_lo[i]) && cyc - rel_cyc < CntMax + 1) begin
+          reset_hold_violations <= reset_hold_violations + 1;
+          $display("%t tb_svpwm_core: leg %0d gate on at edge %0d after a reset release (< %0d)", $time, i,
+                   cyc - rel_cyc, CntMax + 1);
+        end
+        if (rise_hi[i] || rise_lo[i]) rst_pend[i] <= 1'b0;
+        // (a gate the reset turned off went off between the last edge and this one: counted as off from
+        // this edge on, the conservative end)
+        if (fall_hi[i]) last_off[i]   <= rst_evt ? cyc + 1 : cyc;
+        if (fall_lo[i]) last_off[i+3] <= rst_evt ? cyc + 1 : cyc;
         if (rise_hi[i]) last_on[i]    <= cyc;
         if (rise_lo[i]) last_on[i+3]  <= cyc;
         // on-pulse length (clocks from the turn-on to the turn-off): a pulse is exempt if a forced state
@@ -317,6 +409,13 @@ module tb_svpwm_core #(
         if (!forced && !forced_prev && (rise_hi[i] || rise_lo[i]))
           tainted[i] <= 1'b0;              // a clean turn-on starts an unforced pulse
       end
+    end
+    if (rst_evt) begin                     // a reset: each leg owes the dead times in force before it
+      for (int i = 0; i < 3; i++) begin
+        rq_hi[i] <= (rst_pend[i] && rq_hi[i] > rst_dt) ? rq_hi[i] : rst_dt;
+        rq_lo[i] <= (rst_pend[i] && rq_lo[i] > rst_dtf) ? rq_lo[i] : rst_dtf;
+      end
+      rst_pend <= '1;
     end
   end
 

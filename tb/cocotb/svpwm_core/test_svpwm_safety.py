@@ -9,26 +9,28 @@ rising clock edge after rst_ni rose (edge 1 the first). CntMax = 2^DtWidth - 1 =
 
 * f1_reset_with_fault (F1): a reset that turns a high side off and a fault raised with it and held across the
   release, with braking (safe_lo_i = 1): no gate on before the reset hold ends, the three low sides on at
-  exactly edge CntMax + 1 after the release. Derivation: the fault is captured asynchronously (fault_cap_q
-  has no reset), so the synchroniser has it at edge 1 and the dead-time FSMs see the trip (brake) from edge 2,
-  with safe_lo_q (reloaded at edge 1: the configuration is unlocked after a reset) set; the brake is in force
-  long before the hold ends, so it adds no latency: the first turn-on is the hold's, edge CntMax + 1. Variants:
+  exactly edge CntMax + 1 after the release. Derivation: the synchroniser takes the held fault at edges 1 and
+  2 after the release, so the dead-time FSMs see the trip (brake) from edge 2, with safe_lo_q (reloaded at edge
+  1: the configuration is unlocked after a reset) set; the brake is in force long before the hold ends, so it
+  adds no latency: the first turn-on is the hold's, edge CntMax + 1. Variants:
   (a) running, a 6 ns reset pulse between two clock edges; (b) the same with en_i lowered with it; (c) a reset
   over 3 clock edges, the core waiting for sync_i after it (never started); (d) locked (lock_i) with the largest
   falling dead time (1023; compact: its one dead time), a 6 ns pulse. Old RTL: the low sides on at edge 3.
 * f2_clear_with_new_fault (F2): latched trip (trip_cbc_i = 0); a fault_clear_i pulse in the clock in which a
-  new short fault_i pulse is high -- (a) over the clock edge that takes the clear, (b) between two edges, seen
-  by no edge: no gate on at any time after the clear, the trip latched again (tripped_o high through two
-  valleys), fault_o the pulse through the capture and the synchroniser ((a) high at edges 2 and 3 after the
-  clear's clock, (b) at edge 2); a second clear without a fault releases it and the gates come back.
+  new short fault_i pulse is high over the clock edge that takes the clear -- (a) 5 ns, (b) 2 ns around that
+  edge: no gate on at any time after the clear, the trip latched again (tripped_o high through two valleys),
+  fault_o the pulse through the synchroniser (high at edge 2 after the clear's clock only); a second clear
+  without a fault releases it and the gates come back.
 * f3_brake_before_start (F3): braking before the core has run since the reset (en_i low, or waiting for
   sync_i): a fault raised in clock k after the release turns the low sides on at edge max(CntMax + 1, k + 3)
-  (capture, 2 synchroniser edges, the dead-time FSM's edge; the dead time in force is 0 before the first
+  (2 synchroniser edges, the dead-time FSM's edge; the dead time in force is 0 before the first
   update), the gates are off otherwise; after the fault falls and a clear in clock c, the low sides stay on
   through edge c + 2 (the trip held one clock longer after the release) and are off from edge c + 3 on.
 * f4_short_fault_no_gap (F4): latched, a fault_i pulse that spans one clock edge and falls before the next
-  ((a) early, (b) late in the clock), (c) a pulse between two edges, (d) (a) with braking: from the fault's rise
-  until the clear no gate on at any time (braking: no high side on), tripped_o high at every edge.
+  ((a) early, (b) late in the clock), (c) (a) with braking: from the fault's rise until the clear no gate on
+  at any time (braking: no high side on), tripped_o high at every edge; (d) a 2 ns glitch between two edges,
+  seen by no edge: every gate off while it lasts, nothing latched (tripped_o low at every edge after it, the
+  gates back without a clear).
 * reset_hold: every kind of reset (over clock edges, between two edges, over one edge) while running, with
   dt = 0 and 100: the first gate turn-on after it is at edge CntMax + 1 exactly (the model's reset hold).
 
@@ -211,8 +213,8 @@ async def f2_clear_with_new_fault(dut):
     errs: list[str] = []
     P = 400
     u = Inputs(freq=FW(200.0), m=MW(0.5), period=P, dt=10, dtf=10)
-    for variant, (t_on, t_off), fault_o_exp in (("over_edge", (2, 7), [0, 1, 1, 0, 0]),
-                                                ("between_edges", (1, 3), [0, 1, 0, 0, 0])):
+    for variant, (t_on, t_off), fault_o_exp in (("over_edge", (2, 7), [0, 1, 0, 0, 0]),
+                                                ("over_edge_2ns", (4, 6), [0, 1, 0, 0, 0])):
         tb = await fresh(dut, u, run_clocks=HOLD_EDGE + 4 * P)
         dut.fault_i.value = 1                                           # the trip, latched
         await clock_cycles(dut.clk, 2)
@@ -330,7 +332,7 @@ async def f4_short_fault_no_gap(dut):
     P = 400
     u = Inputs(freq=FW(200.0), m=MW(0.5), period=P, dt=10, dtf=10)
     for variant, (t_on, t_off), safe_lo in (("over_edge_early", (1, 9), 0), ("over_edge_late", (4, 14), 0),
-                                            ("between_edges", (1, 3), 0), ("over_edge_braking", (1, 9), 1)):
+                                            ("over_edge_braking", (1, 9), 1), ("glitch_between_edges", (1, 3), 0)):
         tb = await fresh(dut, u, safe_lo=safe_lo, run_clocks=HOLD_EDGE + 4 * P)
         await wait_until(dut, lambda: int(dut.gate_hi_o.value) != 0, 2 * P, step=1)   # a high side on
         await FallingEdge(dut.clk)
@@ -352,6 +354,15 @@ async def f4_short_fault_no_gap(dut):
         await tr.stop()
         e1 = t0 + 5                                                     # the first edge that sees the fault
         unsafe = (lambda g: g != 0) if not safe_lo else (lambda g: g & 0b111 != 0)   # noqa: E731
+        if variant == "glitch_between_edges":       # seen by no edge: off while it lasts, nothing latched
+            bad = [(t - t_f, bin(g)) for t, g in tr.gates if t_f <= t < t_f + (t_off - t_on) and unsafe(g)]
+            if bad:
+                errs.append(f"F4 {variant}: a gate on during the glitch: {bad[:4]}")
+            rows = [k for t, k in tr.rows if t >= e1]
+            if any(k.tripped or k.fault for k in rows) or not any(k.hi for k in rows[:2 * P]):
+                errs.append(f"F4 {variant}: a glitch no edge sees latched, or the gates did not come back")
+            check_counters(dut, errs, f"F4 {variant}")
+            continue
         bad = [(t - t_f, bin(g)) for t, g in tr.gates if t_f <= t < t_clr + 5 and unsafe(g)]
         if bad:
             errs.append(f"F4 {variant}: pins not safe between the fault ({t_f} ns) and the clear: (ns after the "

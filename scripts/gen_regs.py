@@ -279,6 +279,18 @@ def _camel(name: str) -> str:
     return "".join(p.capitalize() for p in name.lower().split("_"))
 
 
+def _param_check(fmt: str, args: str) -> list[str]:
+    """The lines of a parameter check (inside its generate-if), in the form of the hand-written RTL: the
+    message in every tool -- Icarus 11 at time 0 (it has no elaboration-time tasks), Verilator and Yosys
+    at elaboration (Yosys formats only the $display, with %m its module and parameters)."""
+    return ["`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0",
+            f"    initial $fatal(1, \"{fmt} (%m)\", {args});",
+            "`else              // at elaboration (Yosys formats $display only, then stops at $error)",
+            f"    initial $display(\"{fmt} (%m)\", {args});",
+            f"    $error(\"{fmt}\", {args});",
+            "`endif"]
+
+
 def _snake(name: str) -> str:
     return "".join("_" + c.lower() if c.isupper() and i else c.lower() for i, c in enumerate(name))
 
@@ -440,12 +452,12 @@ def render_sv(regs: list[Reg], size: int) -> str:
         L.append(f"{decl:<{pw + 25}} // {cmt}")
     L += [");", "",
           f"  if (AddrWidth < {min_aw} || AddrWidth > 32) begin : gen_bad_addr_width",
-          f"    initial $fatal(1, \"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d\", AddrWidth);",
+          *_param_check(f"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d", "AddrWidth"),
           "  end"]
     for p, (w, _, _, _) in params.items():
         if w == DATA_WIDTH:
             L += [f"  if ({p} < 0) begin : gen_bad_{_snake(p)}",
-                  f"    initial $fatal(1, \"svpwm_regs: {p} must be >= 0, got %0d\", {p});", "  end"]
+                  *_param_check(f"svpwm_regs: {p} must be >= 0, got %0d", p), "  end"]
     L += ["",
           "  // word index of each register"]
     for r in regs:

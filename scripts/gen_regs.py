@@ -211,7 +211,27 @@ def render_h(top, tmp: Path) -> str:
 
     out = tmp / "svpwm_regs.h"
     CHeaderExporter().export(top, str(out))
-    return f"// {BANNER}\n" + out.read_text()
+    text = out.read_text()
+    # C99 as well as C11: static_assert (and <assert.h>, which defines it) only from C11 / in C++
+    c11 = "#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)"
+    for line in ("#include <assert.h>\n", ) + tuple(l + "\n" for l in text.splitlines()
+                                                   if l.startswith("static_assert(")):
+        assert text.count(line) == 1, f"peakrdl-cheader output changed: {line!r}"
+        text = text.replace(line, f"{c11}\n{line}#endif\n")
+    # named values of the enumerated fields (SystemRDL encode): SVPWM__<REG>__<FIELD>__<NAME>
+    enums = []
+    for reg in top.registers():
+        for f in reg.fields():
+            enc = f.get_property("encode")
+            if enc is None:
+                continue
+            p = f"SVPWM__{reg.inst_name}__{f.inst_name.upper()}"
+            enums.append(f"\n// {reg.inst_name}.{f.inst_name}: named values (encode {enc.type_name})")
+            enums += [f"#define {p}__{m.name} 0x{m.value:x}" for m in enc]
+    anchor = "\n#ifdef __cplusplus\n}"
+    assert text.count(anchor) == 1, "peakrdl-cheader output changed: no closing extern C"
+    text = text.replace(anchor, "\n".join(enums) + "\n" + anchor)
+    return f"// {BANNER}\n" + text
 
 
 # --------------------------------------------------------------------------- Python description

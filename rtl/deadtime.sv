@@ -55,7 +55,12 @@ module deadtime #(
 );
 
   if (DtWidth < 1 || DtWidth > 16) begin : gen_bad_width
-    initial $fatal(1, "deadtime: DtWidth must be 1..16, got %0d", DtWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "deadtime: DtWidth must be 1..16, got %0d (%m)", DtWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("deadtime: DtWidth must be 1..16, got %0d (%m)", DtWidth);
+    $error("deadtime: DtWidth must be 1..16, got %0d", DtWidth);
+`endif
   end
 
   // cnt = clocks the gate state has been unchanged, this one included (saturating at 2^DtWidth - 1;

@@ -28,10 +28,20 @@ module svpwm_carrier #(
 );
 
   if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
-    initial $fatal(1, "svpwm_carrier: CntWidth must be 8..16, got %0d", CntWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_carrier: CntWidth must be 8..16, got %0d (%m)", CntWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_carrier: CntWidth must be 8..16, got %0d (%m)", CntWidth);
+    $error("svpwm_carrier: CntWidth must be 8..16, got %0d", CntWidth);
+`endif
   end
   if (MinPeriod < 1 || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
-    initial $fatal(1, "svpwm_carrier: MinPeriod must be 1..2^CntWidth-1, got %0d", MinPeriod);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_carrier: MinPeriod must be 1..2^CntWidth-1, got %0d (%m)", MinPeriod);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_carrier: MinPeriod must be 1..2^CntWidth-1, got %0d (%m)", MinPeriod);
+    $error("svpwm_carrier: MinPeriod must be 1..2^CntWidth-1, got %0d", MinPeriod);
+`endif
   end
 
   localparam bit OneClk = MinPeriod < 2;     // a one-clock half period can be applied

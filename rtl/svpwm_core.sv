@@ -135,15 +135,34 @@ module svpwm_core #(
   localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Compact);
 `endif
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
-    initial $fatal(1, "svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d", MinPeriodFloor,
-                   MinPeriod);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d (%m)",
+                   MinPeriodFloor, MinPeriod);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d (%m)",
+                     MinPeriodFloor, MinPeriod);
+    $error("svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d", MinPeriodFloor,
+           MinPeriod);
+`endif
   end
   if (DtWidth + 2 > CntWidth) begin : gen_bad_dt_width
-    initial $fatal(1, "svpwm_core: need DtWidth + 2 <= CntWidth (period >= 2 (dt + mp)), got %0d / %0d",
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_core: need DtWidth + 2 <= CntWidth (P >= 2 dt), got %0d / %0d (%m)",
                    DtWidth, CntWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_core: need DtWidth + 2 <= CntWidth (P >= 2 dt), got %0d / %0d (%m)",
+                     DtWidth, CntWidth);
+    $error("svpwm_core: need DtWidth + 2 <= CntWidth (P >= 2 dt), got %0d / %0d", DtWidth,
+           CntWidth);
+`endif
   end
   if (FreqMax < 1 || FreqMax > (1 << (FreqWidth - 1)) - 1) begin : gen_bad_freq_max
-    initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d (%m)", FreqMax);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d (%m)", FreqMax);
+    $error("svpwm_core: FreqMax must be 1..2^(FreqWidth-1)-1, got %0d", FreqMax);
+`endif
   end
 
   // ---- run: a register, en_i of the clock before (the modulator starts one clock after en_i rises:

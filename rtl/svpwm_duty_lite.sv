@@ -56,10 +56,22 @@ module svpwm_duty_lite #(
   localparam int W  = (CntWidth + 10 > 20) ? CntWidth + 10 : 20;
 
   if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
-    initial $fatal(1, "svpwm_duty_lite: CntWidth must be 8..16, got %0d", CntWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_duty_lite: CntWidth must be 8..16, got %0d (%m)", CntWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_duty_lite: CntWidth must be 8..16, got %0d (%m)", CntWidth);
+    $error("svpwm_duty_lite: CntWidth must be 8..16, got %0d", CntWidth);
+`endif
   end
   if (TW > CntWidth) begin : gen_bad_dt
-    initial $fatal(1, "svpwm_duty_lite: need DtWidth + 1 <= CntWidth, got %0d / %0d", DtWidth, CntWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_duty_lite: need DtWidth + 1 <= CntWidth, got %0d / %0d (%m)", DtWidth,
+                   CntWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_duty_lite: need DtWidth + 1 <= CntWidth, got %0d / %0d (%m)", DtWidth,
+                     CntWidth);
+    $error("svpwm_duty_lite: need DtWidth + 1 <= CntWidth, got %0d / %0d", DtWidth, CntWidth);
+`endif
   end
 
   // ---- schedule (step numbers; step 1 clears ACC and is also the idle word). A result is written to
@@ -92,7 +104,14 @@ module svpwm_duty_lite #(
   localparam int Latency = SDone + 1;       // clocks start_i -> done_o (model LITE_DUTY_LATENCY)
   localparam int StW     = $clog2(Latency); // step counter width (microcode address)
   if (StW != 8) begin : gen_bad_schedule
-    initial $fatal(1, "svpwm_duty_lite: the microcode ROM has 256 words, the schedule %0d steps", Latency);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_duty_lite: the ucode ROM has 256 words, the schedule %0d steps (%m)",
+                   Latency);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_duty_lite: the ucode ROM has 256 words, the schedule %0d steps (%m)",
+                     Latency);
+    $error("svpwm_duty_lite: the ucode ROM has 256 words, the schedule %0d steps", Latency);
+`endif
   end
 
   // ---- RAM map (32 words). Conditional reads OR a condition into the low address bits: a multiplicand

@@ -67,7 +67,14 @@ module svpwm_mmio #(
 
   // the core needs DtWidth + 2 <= CntWidth
   if (CntWidth < DtWidth + 2 || CntWidth > PeriodBits) begin : gen_bad_cnt_width
-    initial $fatal(1, "svpwm_mmio: CntWidth must be %0d..%0d, got %0d", DtWidth + 2, PeriodBits, CntWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_mmio: CntWidth must be %0d..%0d, got %0d (%m)", DtWidth + 2,
+                   PeriodBits, CntWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_mmio: CntWidth must be %0d..%0d, got %0d (%m)", DtWidth + 2,
+                     PeriodBits, CntWidth);
+    $error("svpwm_mmio: CntWidth must be %0d..%0d, got %0d", DtWidth + 2, PeriodBits, CntWidth);
+`endif
   end
 
   // ---- register block <-> core -------------------------------------------------------------------

@@ -31,8 +31,15 @@ module svpwm_phase_acc #(
 );
 
   if (FreqWidth < 2 || FreqWidth >= PhaseWidth) begin : gen_bad_width
-    initial $fatal(1, "svpwm_phase_acc: need 2 <= FreqWidth < PhaseWidth, got %0d / %0d",
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_phase_acc: need 2 <= FreqWidth < PhaseWidth, got %0d / %0d (%m)",
                    FreqWidth, PhaseWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_phase_acc: need 2 <= FreqWidth < PhaseWidth, got %0d / %0d (%m)",
+                     FreqWidth, PhaseWidth);
+    $error("svpwm_phase_acc: need 2 <= FreqWidth < PhaseWidth, got %0d / %0d", FreqWidth,
+           PhaseWidth);
+`endif
   end
 
   localparam int HiWidth = PhaseWidth - FreqWidth;

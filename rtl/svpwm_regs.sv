@@ -92,10 +92,20 @@ module svpwm_regs #(
 );
 
   if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
-    initial $fatal(1, "svpwm_regs: AddrWidth must be 7..32, got %0d", AddrWidth);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_regs: AddrWidth must be 7..32, got %0d (%m)", AddrWidth);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_regs: AddrWidth must be 7..32, got %0d (%m)", AddrWidth);
+    $error("svpwm_regs: AddrWidth must be 7..32, got %0d", AddrWidth);
+`endif
   end
   if (ClkHz < 0) begin : gen_bad_clk_hz
-    initial $fatal(1, "svpwm_regs: ClkHz must be >= 0, got %0d", ClkHz);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_regs: ClkHz must be >= 0, got %0d (%m)", ClkHz);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_regs: ClkHz must be >= 0, got %0d (%m)", ClkHz);
+    $error("svpwm_regs: ClkHz must be >= 0, got %0d", ClkHz);
+`endif
   end
 
   // word index of each register

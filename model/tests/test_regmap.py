@@ -9,6 +9,8 @@ import shutil
 import subprocess
 from pathlib import Path
 
+import pytest
+
 from svpwm_model import regmap as R
 
 REPO = Path(__file__).resolve().parents[2]
@@ -112,4 +114,24 @@ def test_c_header_matches_regmap(tmp_path):
     src.write_text(_c_checks())
     r = subprocess.run(["cc", "-std=c11", "-Wall", "-Werror", "-fsyntax-only", "-I", str(REPO / "sw"), str(src)],
                        capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize("std", ["c99", "c11"])
+def test_c_header_std(tmp_path, std):
+    """sw/svpwm_regs.h compiles as C99 and as C11 (gcc -Wall -Werror); its named CTRL.mode values are the
+    model's mode codes (fixed.MODE_*), checked by the compiler in a C99-compatible way."""
+    from svpwm_model import fixed
+
+    assert shutil.which("gcc"), "gcc not found: run scripts/install-deps.sh"
+    names = {"FREQ": fixed.MODE_FREQ, "VF": fixed.MODE_VF, "POLAR": fixed.MODE_POLAR,
+             "ALPHABETA": fixed.MODE_AB, "DQ": fixed.MODE_DQ}
+    lines = ['#include "svpwm_regs.h"']
+    lines += [f"typedef char mode_{n}[SVPWM__CTRL__MODE__{n} == {v} ? 1 : -1];" for n, v in names.items()]
+    lines += ["uint32_t ctrl_dq(void) {",
+              "  return (uint32_t)SVPWM__CTRL__MODE__DQ << SVPWM__CTRL__MODE_bp & SVPWM__CTRL__MODE_bm;", "}"]
+    src = tmp_path / "std.c"
+    src.write_text("\n".join(lines) + "\n")
+    r = subprocess.run(["gcc", f"-std={std}", "-Wall", "-Werror", "-Wno-unused-local-typedefs", "-c", "-o",
+                        str(tmp_path / "std.o"), "-I", str(REPO / "sw"), str(src)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr

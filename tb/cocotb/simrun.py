@@ -193,7 +193,7 @@ def run_sim(
     if sim not in SUPPORTED_SIMS:
         _fail(f"unsupported simulator {sim!r}; use one of {SUPPORTED_SIMS}")
     if sim == "icarus" and shutil.which("iverilog") is None:
-        _fail("Icarus Verilog (iverilog) not found; install it with: sudo apt-get install iverilog")
+        _fail("Icarus Verilog (iverilog) not found; run scripts/install-deps.sh (or make deps)")
     if sim == "verilator":
         ensure_verilator_env()
         if shutil.which("verilator") is None:

@@ -45,7 +45,12 @@ module svpwm_ice40_sys #(
   output logic       led_fault_o      // safe state forced (fault pin low or a latched trip)
 );
   if (ClkHz <= 0) begin : gen_bad_clk_hz
-    initial $fatal(1, "svpwm_ice40_sys: ClkHz must be > 0, got %0d", ClkHz);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_ice40_sys: ClkHz must be > 0, got %0d (%m)", ClkHz);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_ice40_sys: ClkHz must be > 0, got %0d (%m)", ClkHz);
+    $error("svpwm_ice40_sys: ClkHz must be > 0, got %0d", ClkHz);
+`endif
   end
 
   // ---- UART frames -> register port ------------------------------------------------------------

@@ -47,7 +47,16 @@ module uart_reg_bridge #(
   localparam int TW = $clog2(TimeoutClks + 1);
 
   if (TimeoutBits < 12) begin : gen_bad_timeout
-    initial $fatal(1, "uart_reg_bridge: TimeoutBits must be >= 12 (longer than a byte), got %0d", TimeoutBits);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(
+        1, "uart_reg_bridge: TimeoutBits must be >= 12 (longer than a byte), got %0d (%m)",
+        TimeoutBits);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display(
+        "uart_reg_bridge: TimeoutBits must be >= 12 (longer than a byte), got %0d (%m)",
+        TimeoutBits);
+    $error("uart_reg_bridge: TimeoutBits must be >= 12 (longer than a byte), got %0d", TimeoutBits);
+`endif
   end
 
   logic [7:0] rx_data;

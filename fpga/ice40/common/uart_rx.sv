@@ -22,7 +22,12 @@ module uart_rx #(
   localparam int CW = $clog2(ClksPerBit) + 1;   // ClksPerBit - 2 and a sign bit
 
   if (ClksPerBit < 4) begin : gen_bad
-    initial $fatal(1, "uart_rx: ClksPerBit must be >= 4, got %0d", ClksPerBit);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "uart_rx: ClksPerBit must be >= 4, got %0d (%m)", ClksPerBit);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("uart_rx: ClksPerBit must be >= 4, got %0d (%m)", ClksPerBit);
+    $error("uart_rx: ClksPerBit must be >= 4, got %0d", ClksPerBit);
+`endif
   end
 
   // RxWait: after a framing error, until the line is high

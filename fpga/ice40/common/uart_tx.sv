@@ -19,7 +19,12 @@ module uart_tx #(
   localparam int CW = $clog2(ClksPerBit) + 1;   // ClksPerBit - 2 and a sign bit
 
   if (ClksPerBit < 2) begin : gen_bad
-    initial $fatal(1, "uart_tx: ClksPerBit must be >= 2, got %0d", ClksPerBit);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "uart_tx: ClksPerBit must be >= 2, got %0d (%m)", ClksPerBit);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("uart_tx: ClksPerBit must be >= 2, got %0d (%m)", ClksPerBit);
+    $error("uart_tx: ClksPerBit must be >= 2, got %0d", ClksPerBit);
+`endif
   end
 
   logic [9:0]    sh_d, sh_q;        // {stop, data, start}, shifted out LSB first; all ones when idle

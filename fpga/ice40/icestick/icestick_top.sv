@@ -46,8 +46,17 @@ module icestick_top #(
   localparam int PllHz = RefHz * (PllDivf + 1) / ((PllDivr + 1) * (1 << PllDivq));   // < 2^31
 
   if (ClkHz != PllHz) begin : gen_bad_clk_hz
-    initial $fatal(1, "icestick_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d)",
-                   ClkHz, PllHz, PllDivr, PllDivf, PllDivq);
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(
+        1, "icestick_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d) (%m)",
+        ClkHz, PllHz, PllDivr, PllDivf, PllDivq);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display(
+        "icestick_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d) (%m)",
+        ClkHz, PllHz, PllDivr, PllDivf, PllDivq);
+    $error("icestick_top: ClkHz %0d != the PLL's %0d Hz (DIVR %0d, DIVF %0d, DIVQ %0d)", ClkHz,
+           PllHz, PllDivr, PllDivf, PllDivq);
+`endif
   end
 
   logic clk, pll_lock;

@@ -49,6 +49,8 @@ module svpwm_gate_out (
 
   logic [1:0] sync_q;                // fault_i synchroniser
   logic       latch_d, latch_q, latch_prev_q;
+  logic       held_q;                // == sync_q[1] || latch_q, as one register (the pins' and the FSMs'
+                                     // trip start at a flip-flop: shorter status and read paths)
   logic       safe, off_lo;
   logic [2:0] hi_ok, lo_ok, hi_on, lo_on;
 
@@ -66,14 +68,16 @@ module svpwm_gate_out (
       sync_q       <= '0;
       latch_q      <= 1'b0;
       latch_prev_q <= 1'b0;
+      held_q       <= 1'b0;
     end else begin
       sync_q       <= {sync_q[0], fault_i};
       latch_q      <= latch_d;
       latch_prev_q <= latch_q;
+      held_q       <= sync_q[0] || latch_d;     // the next clock's sync_q[1] || latch_q
     end
   end
 
-  assign safe   = fault_i || sync_q[0] || sync_q[1] || latch_q;
+  assign safe   = fault_i || sync_q[0] || held_q;
   assign off_lo = safe && !safe_lo_i;
   assign hi_ok  = hi_i & ~lo_i;      // interlock: both requested -> both off
   assign lo_ok  = lo_i & ~hi_i;
@@ -83,7 +87,7 @@ module svpwm_gate_out (
   assign gate_hi_o = pol_i[0] ? ~hi_on : hi_on;
   assign gate_lo_o = pol_i[1] ? ~lo_on : lo_on;
   assign fault_o     = sync_q[1];
-  assign trip_sync_o = sync_q[1] || latch_q || latch_prev_q;
+  assign trip_sync_o = held_q || latch_prev_q;
   assign tripped_o   = safe;
 
 `ifdef FORMAL

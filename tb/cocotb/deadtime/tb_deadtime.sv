@@ -15,6 +15,7 @@ module tb_deadtime #(
   input  logic [DtWidth-1:0] dtf_i,
   input  logic [DtWidth-1:0] mp_i,
   output logic               clk,
+  output logic               hold_o,
   output logic               hi_o,
   output logic               lo_o
 );
@@ -31,6 +32,8 @@ module tb_deadtime #(
     .dt_i    (dt_i),
     .dtf_i   (dtf_i),
     .mp_i    (mp_i),
+    .hold_i  (1'b0),                // HoldIn = 0: the leg's own reset hold
+    .hold_o  (hold_o),
     .hi_o   (hi_o),
     .lo_o   (lo_o)
   );

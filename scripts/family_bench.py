@@ -172,15 +172,17 @@ def fmt_cells(d: dict[str, int]) -> str:
 
 def table(results: list[dict], markdown: bool) -> str:
     head = ["family", "device", "variant", "LUT", "carry", "FF (core)", "DSP", "RAM blocks", "LUT RAM",
-            "Fmax worst / median"]
+            "placed (nextpnr)", "Fmax worst / median"]
     rows = []
     for r in results:
         fm = r["fmax_mhz"]
         fmax = (f"{fm['worst']:.2f} / {fm['median']:.2f} MHz ({len(r['seeds'])} seeds)" if fm
                 else "n/a (no P&R)")
+        pl = r.get("placed")
+        placed = f"{pl['used']}/{pl['available']} {FAMILIES[r['family']]['placed']}" if pl else "n/a"
         rows.append([r["name"], r["device"], r["variant"], str(r["lut"]), fmt_cells(r["carry"]),
                      f"{r['ff_total']} ({r['ff_core']})", fmt_cells(r["dsp"]), fmt_cells(r["ram"]),
-                     fmt_cells(r["lutram"]), fmax])
+                     fmt_cells(r["lutram"]), placed, fmax])
     if markdown:
         return "\n".join(["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
                          + ["| " + " | ".join(row) + " |" for row in rows])

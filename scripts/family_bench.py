@@ -239,7 +239,7 @@ def main(argv=None) -> int:
         return 0
     if a.report:
         doc = json.loads(a.report.read_text())
-        print(table(doc["results"], markdown=True) + "\n\n" + short_table(doc["results"], a.report.name)
+        print(table(doc["results"], markdown=True) + "\n\n" + short_table(doc["results"], str(a.report))
               + "\n\ntools: " + ", ".join(f"{k} {v}" for k, v in doc["versions"].items()))
         return 0
     results = []

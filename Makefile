@@ -74,6 +74,7 @@ test: deps rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
 	@$(MAKE) mutate-smoke
 	@$(MAKE) bitstream-test
+	@$(MAKE) families-test
 	@$(MAKE) soc-sim
 	@$(MAKE) soc BOARD=icebreaker
 
@@ -148,3 +149,6 @@ include rdl/regs.mk
 
 # LiteX SoC (SERV + firmware + the core): soc-sim, soc, soc-console
 include fpga/litex/litex.mk
+
+# Other FPGA families (ECP5, Gowin, Xilinx 7-series): families-bench, families-test
+include fpga/families.mk

@@ -6,7 +6,8 @@
 #   make bitstreams                            both boards (fails when timing is not met)
 #   make bitstream-test                        the boards make test builds (ICE40_TEST_BOARDS)
 #   make synth-bench [SEEDS=5]                 out-of-context core benchmark, full and compact core
-#                                              -> build/ice40/synth_bench.json, synth_bench_compact.json
+#                                              -> build/ice40/synth_bench.json, synth_bench_compact.json;
+#                                              then make families-bench (ECP5, Gowin, Xilinx: fpga/families.mk)
 #   make ice40-test                            UART bridge cocotb test, svpwmctl and FuseSoC tests
 #   make lint-ice40                            lint the board system svpwm_ice40_sys (`make lint` runs it too)
 #   make prog BOARD=icebreaker                 flash with iceprog (not installed by the venv)
@@ -57,6 +58,7 @@ bitstream-test: $(STAMP)
 synth-bench: $(STAMP)
 	$(PY) scripts/synth_bench.py --seeds $(SEEDS)
 	$(PY) scripts/synth_bench.py --compact --seeds $(SEEDS)
+	@$(MAKE) -f $(firstword $(MAKEFILE_LIST)) families-bench
 
 ice40-test: $(STAMP)
 	$(PYTEST) tb/cocotb/ice40_uart $(PYTEST_ARGS)

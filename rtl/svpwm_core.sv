@@ -871,6 +871,64 @@ module svpwm_core #(
     always_comb cover (rst_ni && f_hi[2] && running_o && dt_q > DtWidth'(1) && dtf_q > dt_q && locked_q);
     always_comb cover (rst_ni && f_lo[0] && running_o && dtf_q > DtWidth'(1) && dt_q > dtf_q);
   end
+  // ---- issue 27: dead time at the pins across resets and trips. The monitors have no reset
+  // (declaration values; they sample rst_ni like any input), so a reset does not make them forget the
+  // gate that was on or the dead time in force before it (the core's own dead-time registers are cleared
+  // by the reset: F1). f_rel_q: clocks since the release (0 in the release clock), saturating at
+  // CntMax + 1; per leg, f_*off_q: clocks the pin has been off before this one, f_*off_dt_q: the other
+  // gate's dead time in force in the first clock it was off, f_*off_rst_q: a reset came since it went off.
+  // (deadtime reads dt_q / dtf_act a clock ahead: the dead time in force is their value a clock ago.)
+  localparam int unsigned FW = DtWidth + 1;
+  localparam logic [FW-1:0] FSat = {1'b1, {DtWidth{1'b0}}};   // 2^DtWidth = CntMax + 1
+  logic [FW-1:0]      f_rel_q = '0;
+  logic [DtWidth-1:0] f_dtu_q = '0, f_dtfu_q = '0;
+  always_ff @(posedge clk_i) begin
+    f_rel_q  <= !rst_ni ? '0 : (f_rel_q >= FSat) ? FSat : f_rel_q + 1'b1;
+    f_dtu_q  <= dt_q;
+    f_dtfu_q <= dtf_act;
+  end
+  always_comb assert (f_rel_q <= FSat);
+  // (a) no gate on at the pins before clock 2^DtWidth after a release: longer than any dead time the core
+  // could have had in force before the reset
+  always_comb if (f_hi != 3'b000 || f_lo != 3'b000) assert (f_rel_q == FSat);
+  for (genvar ph = 0; ph < 3; ph++) begin : gen_f_leg
+    logic [FW-1:0]      f_hoff_q = '0, f_loff_q = '0;
+    logic [DtWidth-1:0] f_hoff_dt_q = '0, f_loff_dt_q = '0;
+    logic               f_hoff_rst_q = 1'b0, f_loff_rst_q = 1'b0;
+    always_ff @(posedge clk_i) begin
+      f_hoff_q     <= f_hi[ph] ? '0 : (f_hoff_q >= FSat) ? FSat : f_hoff_q + 1'b1;
+      f_loff_q     <= f_lo[ph] ? '0 : (f_loff_q >= FSat) ? FSat : f_loff_q + 1'b1;
+      if (f_hi[ph]) f_hoff_dt_q <= dtf_act;
+      if (f_lo[ph]) f_loff_dt_q <= dt_q;
+      f_hoff_rst_q <= f_hi[ph] ? 1'b0 : (f_hoff_rst_q || !rst_ni);
+      f_loff_rst_q <= f_lo[ph] ? 1'b0 : (f_loff_rst_q || !rst_ni);
+    end
+    always_comb assert (f_hoff_q <= FSat && f_loff_q <= FSat);
+    // (a) at the pins a high side turned on by its dead-time register only after its low side has been
+    // off for the rising dead time in force (or swaps at 0), a low side after the falling one; every pin
+    // turn-on after a reset since the other gate went off: more than the dead time in force when it went
+    // off, and more than 2^DtWidth - 1 clocks. (A pin turned on by the end of a trip's forcing, its
+    // register already on, is not in the first clause: with the falling dead time raised at a valley in
+    // the meantime and safe_lo_i set during the trip, PDR finds the low-side gap shorter than the new dtf,
+    // frame 1026; see the issue-27 report.)
+    always_ff @(posedge clk_i) if (f_past_valid && f_hi[ph] && !$past(f_hi[ph])) begin
+      if (!$past(hi_req[ph])) assert ($past(f_dtu_q) == '0 || f_loff_q >= FW'($past(f_dtu_q)));
+      if (f_loff_rst_q) assert (f_loff_q > FW'(f_loff_dt_q) && f_loff_q == FSat);
+    end
+    always_ff @(posedge clk_i) if (f_past_valid && f_lo[ph] && !$past(f_lo[ph])) begin
+      if (!$past(lo_req[ph])) assert ($past(f_dtfu_q) == '0 || f_hoff_q >= FW'($past(f_dtfu_q)));
+      if (f_hoff_rst_q) assert (f_hoff_q > FW'(f_hoff_dt_q) && f_hoff_q == FSat);
+    end
+  end
+  // (d) F1 at the pins: a reset after a high side was on (f_hi_ever_q), then braking, and the low side
+  // on after the hold
+  logic f_hi_ever_q = 1'b0;
+  always_ff @(posedge clk_i) if (f_hi[0]) f_hi_ever_q <= 1'b1;
+  // (the full core only: the compact core's first gate comes too late for the cover depth)
+  if (!Compact) begin : gen_f_f1_cover
+    always_ff @(posedge clk_i) if (f_past_valid)
+      cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
+  end
   always_ff @(posedge clk_i) cover (f_past_valid && $past(tripped_o) && !tripped_o && running_o);
   always_ff @(posedge clk_i) cover (f_past_valid && rst_ni && cmp_q != $past(cmp_q) && locked_q);
 `endif

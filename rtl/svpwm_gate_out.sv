@@ -106,6 +106,47 @@ module svpwm_gate_out (
   always_comb if (latch_q) assert (hi_on == 3'b000 && (safe_lo_i || lo_on == 3'b000));
   always_comb cover (latch_q && !fault_i && !cbc_i);
   always_ff @(posedge clk_i) cover (f_past_valid && $past(latch_q) && !latch_q && $past(fault_i, 3));
+
+  // ---- issue 27: the safe state without a break. The monitors have no reset (declaration values; they
+  // sample rst_ni like any input). A fault is "seen" by the clock edge that ends a formal step with
+  // fault_i high (async2sync: one step per clock, an input holds for the step, so a pulse in a step spans
+  // that edge). f_trip_q: a fault has been seen and the trip has not been released since: it rises after
+  // the edge that sees fault_i, falls after a reset (a reset clears the latch) and after the edge at which
+  // the latch falls (a clear, latched; a valley, cbc), unless a fault was seen at that edge or the one
+  // before (a fault in the synchroniser is a new trip, issue 27 F2). f_age_q: its clocks (saturating at 2;
+  // the clocks in reset not counted: the synchroniser is held).
+  logic       f_seen1_q = 1'b0, f_trip_q = 1'b0;
+  logic [1:0] f_age_q = 2'd0;
+  logic       f_rel, f_trip_d;
+  assign f_rel    = latch_q && !latch_d && !f_seen1_q;          // the latch falls, nothing seen before
+  assign f_trip_d = fault_i || (f_trip_q && rst_ni && !f_rel);
+  always_ff @(posedge clk_i) begin
+    f_seen1_q <= fault_i;
+    f_trip_q  <= f_trip_d;
+    f_age_q   <= !f_trip_d ? 2'd0 : !rst_ni ? 2'd0 : !f_trip_q ? 2'd1 : (f_age_q == 2'd2) ? 2'd2
+                                                                                          : f_age_q + 1'b1;
+  end
+  // (c) from the first edge that sees fault_i until the release the high-side pins are off in every
+  // clock, the low sides too unless braking (F2, F4: a clear with a new fault, a pulse over one edge;
+  // a reset releases the trip at once: it clears the latch); and the FSMs' trip (trip_sync_o) is high from the second clock on without a gap until the release
+  always_comb if (f_trip_q && rst_ni) assert (hi_on == 3'b000 && (safe_lo_i || lo_on == 3'b000));
+  always_comb if (f_trip_q && rst_ni && f_age_q == 2'd2) assert (trip_sync_o);
+  // (b) latched mode: a fault seen at the edge of a clear, or at the edge before, survives the clear: the
+  // latch is set again within 3 clocks (the pins stay safe meanwhile: (c))
+  always_ff @(posedge clk_i) if (f_past_valid && rst_ni && $past(rst_ni) && $past(rst_ni, 2)
+                                 && $past(rst_ni, 3) && $past(latch_q, 3) && !$past(latch_q, 2)
+                                 && ($past(fault_i, 3) || $past(f_seen1_q, 3)))
+    assert (latch_q || $past(latch_q));
+  // induction helpers
+  always_comb if (f_trip_q && rst_ni && f_age_q == 2'd0) assert (fault_cap_q);
+  always_comb if (f_trip_q && rst_ni && f_age_q == 2'd1) assert (sync_q[0] || latch_q);
+  // (d) a clear in the clock of a new fault, and the latch set again; a pulse over one clock edge only
+  always_ff @(posedge clk_i) if (f_past_valid) begin
+    cover (latch_q && !$past(latch_q) && !$past(latch_q, 2) && $past(latch_q, 3) && $past(fault_i, 3)
+           && $past(fault_clear_i, 3) && !$past(cbc_i, 3) && !$past(fault_i, 4));
+    cover (latch_q && !$past(latch_q) && !$past(cbc_i) && $past(fault_i, 3) && !$past(fault_i, 4)
+           && !$past(fault_i, 2) && !$past(fault_i) && !fault_i);
+  end
 `endif
 
 endmodule

@@ -109,9 +109,11 @@ module svpwm_gate_out (
 
   // ---- issue 27: the safe state without a break. The monitors have no reset (declaration values; they
   // sample rst_ni like any input). A fault is "seen" by the clock edge that ends a formal step with
-  // fault_i high (async2sync: one step per clock, an input holds for the step, so a pulse in a step spans
-  // that edge). f_trip_q: a fault has been seen and the trip has not been released since: it rises after
-  // the edge that sees fault_i, falls after a reset (a reset clears the latch) and after the edge at which
+  // fault_i high and rst_ni high (async2sync: one step per clock, an input holds for the step, so a pulse
+  // in a step spans that edge; a fault only in reset is not latched: the reset holds the synchroniser,
+  // and no gate turns on in the reset hold after it). f_trip_q: a fault has been seen and the trip has
+  // not been released since: it rises after the edge that sees fault_i, falls after a reset (a reset
+  // clears the latch) and after the edge at which
   // the latch falls (a clear, latched; a valley, cbc), unless a fault was seen at that edge or the one
   // before (a fault in the synchroniser is a new trip, issue 27 F2). f_age_q: its clocks (saturating at 2;
   // the clocks in reset not counted: the synchroniser is held).
@@ -119,7 +121,7 @@ module svpwm_gate_out (
   logic [1:0] f_age_q = 2'd0;
   logic       f_rel, f_trip_d;
   assign f_rel    = latch_q && !latch_d && !f_seen1_q;          // the latch falls, nothing seen before
-  assign f_trip_d = fault_i || (f_trip_q && rst_ni && !f_rel);
+  assign f_trip_d = (fault_i && rst_ni) || (f_trip_q && rst_ni && !f_rel);
   always_ff @(posedge clk_i) begin
     f_seen1_q <= fault_i;
     f_trip_q  <= f_trip_d;
@@ -138,7 +140,7 @@ module svpwm_gate_out (
                                  && ($past(fault_i, 3) || $past(f_seen1_q, 3)))
     assert (latch_q || $past(latch_q));
   // induction helpers
-  always_comb if (f_trip_q && rst_ni && f_age_q == 2'd0) assert (fault_cap_q);
+  always_comb if (f_trip_q && rst_ni) assert (f_age_q != 2'd0);
   always_comb if (f_trip_q && rst_ni && f_age_q == 2'd1) assert (sync_q[0] || latch_q);
   // (d) a clear in the clock of a new fault, and the latch set again; a pulse over one clock edge only
   always_ff @(posedge clk_i) if (f_past_valid) begin

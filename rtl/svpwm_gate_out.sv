@@ -130,7 +130,8 @@ module svpwm_gate_out (
   end
   // (c) from the first edge that sees fault_i until the release the high-side pins are off in every
   // clock, the low sides too unless braking (F2, F4: a clear with a new fault, a pulse over one edge;
-  // a reset releases the trip at once: it clears the latch); and the FSMs' trip (trip_sync_o) is high from the second clock on without a gap until the release
+  // a reset releases the trip at once: it clears the latch); and the FSMs' trip (trip_sync_o) is high
+  // from the second clock on without a gap until the release
   always_comb if (f_trip_q && rst_ni) assert (hi_on == 3'b000 && (safe_lo_i || lo_on == 3'b000));
   always_comb if (f_trip_q && rst_ni && f_age_q == 2'd2) assert (trip_sync_o);
   // (b) latched mode: a fault seen at the edge of a clear, or at the edge before, survives the clear: the

@@ -19,7 +19,7 @@
 //                the default: svpwm_pkg::min_period(Compact), 254 / 230 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
-// Input modes (mode_i, README "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
+// Input modes (mode_i, docs/reference.md "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
 // POLAR (theta_i + m_i), AB (v1_i, v2_i = v_alpha, v_beta), DQ (v1_i, v2_i = v_d, v_q + theta_i); a vector
 // beyond the hexagon is clamped to its boundary keeping its angle (sat_o); dpwm_i places the zero vectors
 // (SVPWM or bus-clamped DPWM); om_i = 1 replaces the clamp by the six-step law in the angle-driven modes

@@ -84,7 +84,7 @@ SPEED = dict(name="speed_loop_vf", kind="speed_loop", t_end_s=2.0, period=P_VERM
              ctrl="slip", title="AVR495 Fig. 6-1: +700 -> -700 rpm, slip-regulated PI speed loop, V/f law computed by "
                                 "the core (mode 1), RTL in the loop")
 
-# Dead-time compensation (issue 15 item 5(a); README "Dead-time compensation"): at both Minas points three runs,
+# Dead-time compensation (issue 15 item 5(a); docs/reference.md "Dead time and minimum pulse"): at both Minas points three runs,
 # dead time 0 / 1 us / 1 us with dtc_en_i = 1, each with the motor model in the loop: it follows the RTL's gate
 # edges (the pole of a leg with both gates off set by its current's sign) and at every update's sample point its
 # three current signs go to isign_i (demo_runs.run_dtc_point). Speed held at the equivalent-circuit point for

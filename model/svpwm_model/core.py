@@ -5,7 +5,7 @@ Time base: cycle 0 is the first clock with en_i = 1; the core's run register fol
 so the valley of carrier period 0 is cycle fixed.START_DELAY (1). A value "at cycle c" is a register's value
 during clock c; an edge "at cycle c" means the new value holds from c.
 
-Timeline (see README "Timing"):
+Timeline (see docs/reference.md "Timing and latency"):
 * period n starts at valley t_n with half period P_n: t_{n+1} = t_n + 2 P_n; its peak is t_n + P_n.
 * update opportunities: the peak of every period (upd PEAK or BOTH) and the valley t_{n+1} (VALLEY or
   BOTH); with the prescaler only every (presc + 1)-th opportunity updates (counter from 0 at the start).

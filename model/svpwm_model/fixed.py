@@ -2,7 +2,7 @@
 """Bit-exact fixed-point arithmetic of the svpwm core: the specification the RTL implements.
 
 Every function here computes exactly what the RTL computes, integer by integer; tests compare the
-RTL against these with ``==``.  Formats (see README "Fixed-point formats"):
+RTL against these with ``==``.  Formats (see docs/reference.md "Fixed-point formats"):
 
 * in-sector angle: unsigned PHASE_WIDTH-bit fraction of 60 deg (theta' = angle / 2**PHASE_WIDTH * 60 deg),
   sector 0..5 (= the seeds' sectors 1..6); the full angle is sector*60 deg + theta'.
@@ -43,7 +43,7 @@ D_ONE = 1 << SIN_BITS     # dwell time of a whole period
 T_CAP = D_ONE - 1         # dwell times enter the 16x16 multiplier: capped at 1 - 2^-16
 SQRT3_2 = int(round(math.sqrt(3) / 2 * (1 << SIN_BITS)))   # sqrt(3)/2, UQ0.16 (56756)
 
-# input modes (mode_i) -- README "Input modes"
+# input modes (mode_i) -- docs/reference.md "Input modes"
 MODE_FREQ, MODE_VF, MODE_POLAR, MODE_AB, MODE_DQ = range(5)
 MODE_NAMES = ("freq", "vf", "polar", "alphabeta", "dq")
 # zero-vector placement (dpwm_i): continuous SVPWM, or discontinuous (bus-clamped) PWM

@@ -325,7 +325,7 @@ def vf_unit_hz(f_clk: float = F_CLK) -> float:
 
 @dataclass(frozen=True)
 class VfWords:
-    """The V/f law as the core's register words (mode_i = 1, README "Input modes"):
+    """The V/f law as the core's register words (mode_i = 1, docs/reference.md "Input modes"):
     ``boost`` and ``m_max`` UQ1.15 (0x8000 = m 1.0), ``slope`` UQ8.8 m-LSBs per 2^(FREQ_WIDTH-17)
     frequency-word LSBs.  The core computes
     m = min(m_max, boost + ((|freq| >> (FREQ_WIDTH-17)) * slope + 128) >> 8) (fixed.vf_m) from the frequency

@@ -17,6 +17,9 @@ from cocotb.triggers import FallingEdge, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 from clocks import clock_cycles
 
+from pathlib import Path
+
+from simrun import rtl_sources, run_sim
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i
 from svpwm_model.core import CoreModel, Inputs, Run
@@ -347,3 +350,24 @@ def _squash(ev: list[tuple[int, int]], initial: int = 0) -> list[tuple[int, int]
         if len(out) >= 2 and out[-1][1] == out[-2][1]:
             out.pop()
     return out[1:]
+
+
+# ---- the builds of tb_svpwm_core (tb/cocotb/svpwm_core/tb_svpwm_core.sv) that the core, safety, modes and
+# stress tests share: one simulator model per build name (simrun.run_sim makes each once per simulator)
+CORE_HARNESS = Path(__file__).parent / "svpwm_core" / "tb_svpwm_core.sv"
+CORE_BUILDS: dict[str, dict] = {
+    "default": {},
+    "compact": {"parameters": {"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD},
+                "extra_env": {"SVPWM_COMPACT": "1"}},
+    "freq16": {"parameters": {"FreqWidth": 16, "PhaseWidth": 26}},   # the narrow frequency word
+}
+
+
+def run_core_sim(sim: str, test_module: str, test_dir: Path, build: str = "default", testcase=None,
+                 record: bool = True, extra_env: dict | None = None) -> None:
+    """Run cocotb tests of ``test_module`` on tb_svpwm_core built as ``build`` (CORE_BUILDS)."""
+    cfg = CORE_BUILDS[build]
+    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [CORE_HARNESS], test_module=test_module,
+            test_dir=test_dir, build_name=build, parameters=cfg.get("parameters", {}),
+            extra_env={**cfg.get("extra_env", {}), **(extra_env or {})}, testcase=testcase, record=record,
+            vpi_top_only=True)

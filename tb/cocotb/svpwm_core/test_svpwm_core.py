@@ -28,11 +28,11 @@ import pytest
 from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 
-from simrun import cocotb_tests, rtl_sources, run_sim
+from simrun import cocotb_tests
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import CoreModel, Inputs
-from svpwm_tb import CLK_NS, CoreTB
+from svpwm_tb import CLK_NS, CoreTB, run_core_sim
 from clocks import clock_cycles
 
 F_CLK = fixed.F_CLK_DEFAULT
@@ -645,30 +645,22 @@ async def carry_cleared_by_trip(dut):
     assert int(dut.trip_violations_o.value) == 0
 
 # ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two
-# builds (full, compact) are made once per simulator and shared by their items (simrun.run_sim).
+# builds (full, compact) are made once per simulator and shared by their items (svpwm_tb.run_core_sim, CORE_BUILDS).
 NARROW = "narrow_freq_word"                 # the freq16 build's own test
 CASES = [c for c in cocotb_tests(__file__) if c != NARROW]
-HARNESS = Path(__file__).parent / "tb_svpwm_core.sv"
 
 
 @pytest.mark.parametrize("case", CASES)
 def test_svpwm_core(sim, case):
-    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
-            test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="default",
-            testcase=case, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, "default", case)
 
 
 @pytest.mark.parametrize("case", CASES)
 def test_svpwm_core_compact(sim, case):
     # the compact variant: the same tests, the same model with compact=True
-    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
-            test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="compact",
-            parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
-            testcase=case, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, "compact", case)
 
 
 def test_svpwm_core_freq16(sim):
     # FreqWidth = 16 / PhaseWidth = 26: the frequency-word width branch no other build has (narrow_freq_word)
-    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
-            test_module="test_svpwm_core", test_dir=Path(__file__).parent, build_name="freq16",
-            parameters={"FreqWidth": 16, "PhaseWidth": 26}, testcase=NARROW, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, "freq16", NARROW)

@@ -43,14 +43,14 @@ from pathlib import Path
 
 import cocotb
 import pytest
-from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
+from cocotb.triggers import FallingEdge, ReadOnly, Timer
 from cocotb.utils import get_sim_time
 
 from clocks import clock_cycles
-from simrun import cocotb_tests, rtl_sources, run_sim
+from simrun import cocotb_tests
 from svpwm_model import fixed
 from svpwm_model.core import Inputs
-from svpwm_tb import CLK_NS, Clock, CoreTB
+from svpwm_tb import CLK_NS, Clock, CoreTB, run_core_sim
 
 FW = fixed.freq_word
 MW = fixed.m_word
@@ -418,21 +418,15 @@ async def reset_hold(dut):
 
 
 # ---- pytest items: one per cocotb test and build (the builds of test_svpwm_core.py: the same sources and
-# parameters, so simrun.run_sim shares them)
+# parameters: svpwm_tb.CORE_BUILDS, so the simulator models are shared)
 CASES = cocotb_tests(__file__)
-HARNESS = Path(__file__).parent / "tb_svpwm_core.sv"
 
 
 @pytest.mark.parametrize("case", CASES)
 def test_svpwm_safety(sim, case):
-    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
-            test_module="test_svpwm_safety", test_dir=Path(__file__).parent, build_name="default",
-            testcase=case, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_safety", Path(__file__).parent, "default", case)
 
 
 @pytest.mark.parametrize("case", CASES)
 def test_svpwm_safety_compact(sim, case):
-    run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [HARNESS],
-            test_module="test_svpwm_safety", test_dir=Path(__file__).parent, build_name="compact",
-            parameters={"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD}, extra_env={"SVPWM_COMPACT": "1"},
-            testcase=case, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_safety", Path(__file__).parent, "compact", case)

@@ -20,10 +20,10 @@ from pathlib import Path
 import cocotb
 import pytest
 
-from simrun import REPO, cocotb_tests, rtl_sources, run_sim
+from simrun import cocotb_tests
 from svpwm_model import fixed
 from svpwm_model.core import Inputs
-from svpwm_tb import CoreTB
+from svpwm_tb import CoreTB, run_core_sim
 
 ICARUS = os.environ.get("SVPWM_SIM_NAME", "") == "icarus"
 P = fixed.MIN_PERIOD + 21 if ICARUS else 1536   # half period (Icarus: just above the core's MinPeriod)
@@ -256,7 +256,5 @@ async def invalid_mode(dut):
 # one pytest item per cocotb test; the full core's build is shared with tb/cocotb/svpwm_core
 @pytest.mark.parametrize("case", cocotb_tests(__file__))
 def test_svpwm_modes(sim, case):
-    run_sim(sim, toplevel="tb_svpwm_core",
-            sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
-            test_module="test_svpwm_modes", test_dir=Path(__file__).parent, build_name="default",
-            extra_env={"SVPWM_SIM_NAME": sim}, testcase=case, record=True, vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_modes", Path(__file__).parent, "default", case,
+                 extra_env={"SVPWM_SIM_NAME": sim})

@@ -30,7 +30,7 @@ import cocotb
 from cocotb.triggers import FallingEdge, Timer
 from clocks import clock_cycles
 
-from simrun import REPO, rtl_sources, run_sim
+from svpwm_tb import run_core_sim
 
 CLK_NS = 10
 
@@ -357,7 +357,4 @@ async def random_stress(dut):
 
 
 def test_svpwm_stress(sim):
-    run_sim(sim, toplevel="tb_svpwm_core",
-            sources=rtl_sources() + [REPO / "tb/cocotb/svpwm_core/tb_svpwm_core.sv"],
-            test_module="test_svpwm_stress", test_dir=Path(__file__).parent, build_name="default",
-            vpi_top_only=True)
+    run_core_sim(sim, "test_svpwm_stress", Path(__file__).parent, "default", record=False)

@@ -99,8 +99,11 @@ lint: $(STAMP)
 	@for f in $(LINT_SRCS) $(LINT_WAIVER); do \
 	  test -f "$$f" || { echo "ERROR: lint input $$f not found" >&2; exit 1; }; done
 	verilator $(LINT_FLAGS) --top-module $(LINT_TOP) $(LINT_WAIVER) $(LINT_SRCS)
-	verilator $(LINT_FLAGS) --top-module svpwm_core -GCompact=1 $(LINT_WAIVER) $(LINT_SRCS)
-	@echo "lint: clean (svpwm_core full and Compact = 1)"
+	@# the other named configurations (model/svpwm_model/config.py CONFIGS: foc, vf, minimal, tiny)
+	@for c in $$($(PY) -c "from svpwm_model import config; print(*[f'{n}={v}' for n, v in config.CONFIGS.items() if n != 'full'])"); do \
+	  echo "lint: svpwm_core $$c"; \
+	  verilator $(LINT_FLAGS) --top-module svpwm_core -GFeatures=$${c#*=} $(LINT_WAIVER) $(LINT_SRCS) || exit 1; done
+	@echo "lint: clean (svpwm_core full, foc, vf, minimal, tiny)"
 
 model-test: $(STAMP)
 	@test -d model/tests || { echo "ERROR: model/tests not found" >&2; exit 1; }

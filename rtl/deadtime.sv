@@ -272,7 +272,7 @@ module deadtime #(
   //   f_*off_q:  clocks the gate has been off before this one (saturating); f_*off_dt_q: the other
   //              gate's dead time in force in the first clock this gate was off; f_*off_rst_q: a reset
   //              since this gate turned off (or while it was on)
-  localparam int unsigned FW = DtWidth + 1;
+  localparam logic [31:0] FW = DtWidth + 1;
   localparam logic [FW-1:0] FSat = FW'(CntMax) + 1'b1;  // CntMax + 1
   logic [FW-1:0]      f_rel_q = '0, f_hoff_q = '0, f_loff_q = '0;
   logic [DtWidth-1:0] f_dtu_q = '0, f_dtfu_q = '0, f_hoff_dt_q = '0, f_loff_dt_q = '0;

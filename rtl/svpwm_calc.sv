@@ -18,15 +18,16 @@
 // builder (calc_prog.Builder) waits for what that delays: a flag is a condition four steps after its
 // step, a ROM word four steps after its angle, an out step two steps after the sector; the division's
 // BinvNsign uses the sign of the step two before (a hold between its steps); step 1 is empty.
-// TRANSITIONAL: with Compact = 1 this module still instantiates the compact core's own serial datapath
-// (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency): the engine's compact program (FREQ only,
-// 236 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
-// Parameters: Compact - 1: FREQ mode only (mode_i, theta_i, v1_i, v2_i, vf_*, dpwm_i, fabs_i
-//             ignored); Dsp - 1: the registered multiplier, 0: the serial unit (default: the core's choice,
-//             svpwm_pkg::core_dsp); CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1
-//             bits.
-// Latency: svpwm_pkg::core_latency(Compact) clocks from start_i to done_o (Compact = 0:
-// svpwm_pkg::calc_latency(0, Dsp)).
+// TRANSITIONAL: the tiny build (Features = svpwm_pkg::CfgTiny) still instantiates its own serial datapath
+// (rtl/svpwm_duty_lite.sv, latency svpwm_pkg::LiteDutyLatency, FREQ only: mode_i ignored): the engine's tiny
+// program (236 clocks, bit-exact in the model) does not fit the iCEstick's HX1K yet (1,685 / 1,280 LC).
+// Parameters: Features - the build (svpwm_pkg Feat* bits / Cfg* configurations; model/svpwm_model/config.py):
+//             the program of its calculator features (svpwm_ucode); the inputs of features it lacks are not
+//             read (theta_i without POLAR / DQ, v1_i / v2_i without AB / DQ, vf_*_i / fabs_i without VF,
+//             dpwm_i, om_i, isign_i / hdr_i / hdf_i, carry_i / carry_en_i without DPWM, SIXSTEP, DTC, CARRY), a
+//             mode it lacks gives the zero vector and err_o; its Dsp bit: 1 the registered multiplier, 0 the
+//             serial unit; CntWidth - period / compare width (8..16); DtWidth - thr_i is DtWidth + 1 bits.
+// Latency: svpwm_pkg::core_latency(Features) clocks from start_i to done_o.
 // Volt-second carry: carry_i (with carry_en_i) is added to each phase's command before the minimum-pulse
 // rule; carry_o is what the rule dropped or widened, limited to +-ceil(thr / 2) (fixed.snap_carry), for the
 // core to give back in the next update; carry_o is valid from the second clock after done_o until the next
@@ -40,8 +41,7 @@
 `default_nettype none
 
 module svpwm_calc #(
-  parameter bit Compact  = 1'b0,
-  parameter bit Dsp      = svpwm_pkg::core_dsp(Compact),
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,
   parameter int CntWidth = 16,
   parameter int DtWidth  = 10
 ) (
@@ -78,8 +78,20 @@ module svpwm_calc #(
   output logic [3*DtWidth+5:0]  carry_o       // {c, b, a} carry out: command - snapped, at most +-ceil(thr/2)
 );
   localparam int EW = DtWidth + 2;            // carry width (signed): |carry| <= ceil(thr / 2) <= 2^DtWidth
+  localparam bit Dsp      = svpwm_pkg::has(Features, svpwm_pkg::FeatDsp);
+  localparam bit HasTheta = svpwm_pkg::has(Features, svpwm_pkg::FeatPolar)
+                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
+  localparam bit HasXy    = svpwm_pkg::has(Features, svpwm_pkg::FeatAb)
+                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
+  localparam bit HasVf    = svpwm_pkg::has(Features, svpwm_pkg::FeatVf);
+  localparam bit HasDpwm  = svpwm_pkg::has(Features, svpwm_pkg::FeatDpwm);
+  localparam bit HasSix   = svpwm_pkg::has(Features, svpwm_pkg::FeatSixstep);
+  localparam bit HasDtc   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtc);
+  localparam bit HasCarry = svpwm_pkg::has(Features, svpwm_pkg::FeatCarry);
+  // the mode codes built (bit = code, svpwm_pkg::FeatFreq .. FeatDq)
+  localparam logic [4:0] ModesBuilt = 5'(Features);
 
-  if (Compact) begin : gen_lite
+  if (svpwm_pkg::is_tiny(Features)) begin : gen_lite
     svpwm_duty_lite #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_duty (
       .clk_i    (clk_i),
       .rst_ni   (rst_ni),
@@ -104,7 +116,7 @@ module svpwm_calc #(
                            isign_i, hdr_i, hdf_i, om_i, carry_i, carry_en_i};
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
-    localparam int Latency = svpwm_pkg::calc_latency(Compact, Dsp);
+    localparam int Latency = svpwm_pkg::calc_latency(Features);
 
     // ---- step counter and microcode ------------------------------------------------------------------
     logic [8:0]        pc_d, pc_q;
@@ -121,7 +133,7 @@ module svpwm_calc #(
       else if (start_i)                   pc_d = 9'd1;
     end
 
-    svpwm_ucode #(.Compact(Compact), .Dsp(Dsp)) u_ucode (
+    svpwm_ucode #(.Features(Features)) u_ucode (
       .clk_i  (clk_i),
       .addr_i (pc_d),
       .word_o (word)
@@ -179,8 +191,10 @@ module svpwm_calc #(
     logic [1:0] dpdec_d, dpdec_q;        // {DPWM off, DPWM max}
     logic       dp60_d, dp60_q;          // DPWM1 (60 deg)
 
-    assign mode    = Compact ? 3'(svpwm_pkg::ModeFreq) : mode_i;
-    assign dpwm    = Compact ? 2'(svpwm_pkg::DpwmOff) : dpwm_i;
+    // a mode the build lacks: the invalid code (zero vector, err); DPWM not built: SVPWM
+    assign mode    = (mode_i <= 3'(svpwm_pkg::ModeDq) && !ModesBuilt[mode_i]) ? 3'(svpwm_pkg::ModeNotBuilt)
+                                                                            : mode_i;
+    assign dpwm    = HasDpwm ? dpwm_i : 2'(svpwm_pkg::DpwmOff);
     assign mdec_d  = {mode > 3'(svpwm_pkg::ModeDq),
                       (mode == 3'(svpwm_pkg::ModeAb)) || (mode == 3'(svpwm_pkg::ModeDq)),
                       (mode == 3'(svpwm_pkg::ModePolar)) || (mode == 3'(svpwm_pkg::ModeDq)),
@@ -397,7 +411,8 @@ module svpwm_calc #(
     assign hdf_w  = EW'(hdf_i);
     assign mhdr_w = EW'(0) - EW'(hdr_i);
     for (genvar ph = 0; ph < 3; ph++) begin : gen_dpe
-      assign dpe_d[ph] = (isign_i[ph] ? hdf_w : mhdr_w) + (carry_en_i ? carry_i[ph*EW +: EW] : EW'(0));
+      assign dpe_d[ph] = (HasDtc ? (isign_i[ph] ? hdf_w : mhdr_w) : EW'(0))
+                       + ((HasCarry && carry_en_i) ? carry_i[ph*EW +: EW] : EW'(0));
       always_ff @(posedge clk_i) dpe_q[ph] <= dpe_d[ph];
     end
     // (registered again: sel -> class -> this multiplexer -> the input multiplexer -> in_q was a worst path;
@@ -413,20 +428,20 @@ module svpwm_calc #(
       in_signed = 1'b0;
       unique case (opnd_d[3:0])
         4'(svpwm_pkg::InM):      in_sel = m_i;
-        4'(svpwm_pkg::InTheta):  in_sel = Compact ? 16'd0 : theta_i;
-        4'(svpwm_pkg::InV1):     begin in_sel = Compact ? 16'd0 : v1_i; in_signed = !Compact; end
-        4'(svpwm_pkg::InV2):     begin in_sel = Compact ? 16'd0 : v2_i; in_signed = !Compact; end
-        4'(svpwm_pkg::InBoost):  in_sel = Compact ? 16'd0 : vf_boost_i;
-        4'(svpwm_pkg::InSlope):  in_sel = Compact ? 16'd0 : vf_slope_i;
-        4'(svpwm_pkg::InMmax):   in_sel = Compact ? 16'd0 : vf_mmax_i;
-        4'(svpwm_pkg::InFabs):   in_sel = Compact ? 16'd0 : fabs_i;
+        4'(svpwm_pkg::InTheta):  in_sel = HasTheta ? theta_i : 16'd0;
+        4'(svpwm_pkg::InV1):     begin in_sel = HasXy ? v1_i : 16'd0; in_signed = HasXy; end
+        4'(svpwm_pkg::InV2):     begin in_sel = HasXy ? v2_i : 16'd0; in_signed = HasXy; end
+        4'(svpwm_pkg::InBoost):  in_sel = HasVf ? vf_boost_i : 16'd0;
+        4'(svpwm_pkg::InSlope):  in_sel = HasVf ? vf_slope_i : 16'd0;
+        4'(svpwm_pkg::InMmax):   in_sel = HasVf ? vf_mmax_i : 16'd0;
+        4'(svpwm_pkg::InFabs):   in_sel = HasVf ? fabs_i : 16'd0;
         4'(svpwm_pkg::InPeriod): in_sel = 16'(period_i);
         4'(svpwm_pkg::InThr):    in_sel = 16'(thr_i);
         // the dead-time compensation of the class's phase: + hdf for a negative current, else - hdr
         4'(svpwm_pkg::InDhi):    begin in_sel = 16'($signed(dtc_in[0])); in_signed = 1'b1; end
         4'(svpwm_pkg::InDlo):    begin in_sel = 16'($signed(dtc_in[1])); in_signed = 1'b1; end
         4'(svpwm_pkg::InDmid):   begin in_sel = 16'($signed(dtc_in[2])); in_signed = 1'b1; end
-        4'(svpwm_pkg::InMv):     in_sel = (om_i && !is_xy) ? 16'(svpwm_pkg::MVertex) : 16'hFFFF;
+        4'(svpwm_pkg::InMv):     in_sel = (HasSix && om_i && !is_xy) ? 16'(svpwm_pkg::MVertex) : 16'hFFFF;
         default:      in_sel = 16'd0;
       endcase
     end

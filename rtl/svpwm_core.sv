@@ -6,17 +6,24 @@
 // Every carrier period follows Minas Table I / AVR495 Table 4-3: symmetric seven segments, V0 split
 // at the start and end, V7 in the middle, one leg switching per transition.
 // Parameters:
-//   Compact    - 1: the compact variant for small devices (the iCEstick's HX1K, no DSP): FREQ mode only,
-//                continuous SVPWM, valley updates, no dead-time compensation; mode_i, theta_i, v1_i, v2_i,
-//                vf_*_i, dpwm_i, om_i, upd_i, presc_i, sync_en_i, sync_i, dtc_en_i, isign_i and vsc_en_i
-//                are ignored. The same calculator runs its FREQ-only program
-//                on the serial multiplier; SampleLead = svpwm_pkg::sample_lead(1) (fixed.LITE_SAMPLE_LEAD)
+//   Features   - the build: a mask of svpwm_pkg Feat* bits, or a named configuration svpwm_pkg::CfgFull
+//                (default: every feature), CfgFoc, CfgVf, CfgMinimal, CfgTiny (model/svpwm_model/config.py,
+//                README "Configurations"). A feature not built costs nothing and its inputs are not read:
+//                FREQ / VF / POLAR / AB / DQ (mode_i codes 0..4; a code not built gives the zero vector and
+//                cfg_err_o; without FREQ and VF no phase accumulator, freq_i not read; without VF vf_*_i,
+//                without POLAR and DQ theta_i, without AB and DQ v1_i / v2_i), DPWM (dpwm_i), SIXSTEP (om_i),
+//                DTC (dtc_en_i, isign_i), CARRY (vsc_en_i), DTF (dtf_i, dtf_en_i: one dead time, dt_i), UPD
+//                (upd_i: valley updates), PRESC (presc_i), SYNC (sync_en_i, sync_i), DSP (the calculator's
+//                multiplier: 1 registered 16 x 16, 0 the serial unit). TRANSITIONAL: CfgTiny (FREQ only,
+//                the compact core before) runs its own serial datapath and ignores mode_i too.
+//                SampleLead = svpwm_pkg::sample_lead(Features) (full 250, foc 218, vf 166, minimal 135,
+//                tiny 226 clocks)
 //   CntWidth   - carrier / period / compare width (8..16)
 //   PhaseWidth - in-sector angle fraction bits; f_out = freq * f_clk / (6 * 2^PhaseWidth)
 //   FreqWidth  - signed frequency word width (< PhaseWidth)
 //   DtWidth    - dead-time width (max 2^DtWidth - 1 clocks)
 //   MinPeriod  - smallest half period accepted; smaller period_i is clamped to it (>= SampleLead + 4,
-//                the default: svpwm_pkg::min_period(Compact), 254 / 230 clocks)
+//                the default: svpwm_pkg::min_period(Features), full 254 clocks)
 //   FreqMax    - largest |freq_i| accepted; larger is clamped (default: the full signed range)
 //   GatePol    - reset value of the gate polarity {low side, high side}, 1 = active-low pins
 // Input modes (mode_i, docs/reference.md "Input modes"): FREQ (freq_i + m_i), VF (freq_i, m from the V/f law),
@@ -33,7 +40,7 @@
 // Timing: new compare values take effect at an update point -- the valley, the peak or both (upd_i;
 // presc_i + 1 = carrier opportunities per update) -- and the reference (freq_i, m_i, theta_i, v1_i, v2_i,
 // vf_*, dpwm_i, om_i, mode_i, dtc_en_i, isign_i, vsc_en_i) is sampled SampleLead =
-// svpwm_pkg::sample_lead(Compact) clocks before it (the calculator's program + load 1: 250, compact 226), in
+// svpwm_pkg::sample_lead(Features) clocks before it (the calculator's program + load 1), in
 // the clock before count == SampleLead (down) / P - SampleLead (up). period_i, dt_i, dtf_i, mp_i, upd_i,
 // presc_i are sampled there before every valley (period_i as it was one clock earlier) and take effect at it
 // (dead times and mp on the gates one clock after it); a changed period, dead time or minimum pulse forces an
@@ -52,17 +59,17 @@
 // are clamped and flagged, a too short period is lengthened (the dead time is never shortened).
 // Dead times: dt_i is the rising-edge one (clocks the high side waits after the low side turned off),
 // dtf_i the falling-edge one (clocks the low side waits after the high side turned off) when dtf_en_i is
-// 1, else the falling dead time is dt_i; the minimum-pulse threshold is max(dt, dtf) + mp. The compact
-// variant ignores dtf_i / dtf_en_i (one dead time, dt_i, no extra registers).
+// 1, else the falling dead time is dt_i; the minimum-pulse threshold is max(dt, dtf) + mp. A build
+// without DTF ignores dtf_i / dtf_en_i (one dead time, dt_i, no extra registers).
 `default_nettype none
 
 module svpwm_core #(
-  parameter bit Compact    = 1'b0,
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = svpwm_pkg::min_period(Compact),
+  parameter int MinPeriod  = svpwm_pkg::min_period(Features),
   parameter int FreqMax    = (1 << (FreqWidth - 1)) - 1,
   parameter logic [1:0] GatePol = 2'b00
 ) (
@@ -131,9 +138,31 @@ module svpwm_core #(
   localparam int SampleLead     = 2;
   localparam int MinPeriodFloor = 4;
 `else
-  localparam int SampleLead     = svpwm_pkg::sample_lead(Compact);        // calculator + load 1
-  localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Compact);
+  localparam int SampleLead     = svpwm_pkg::sample_lead(Features);       // calculator + load 1
+  localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Features);
 `endif
+  // the features of this build (svpwm_pkg Feat*; the calculator reads its own from Features)
+  localparam bit HasAcc   = svpwm_pkg::has(Features, svpwm_pkg::FeatFreq)
+                            || svpwm_pkg::has(Features, svpwm_pkg::FeatVf);   // the phase accumulator
+  localparam bit HasVf    = svpwm_pkg::has(Features, svpwm_pkg::FeatVf);
+  localparam bit HasXy    = svpwm_pkg::has(Features, svpwm_pkg::FeatAb)
+                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
+  localparam bit HasDpwm  = svpwm_pkg::has(Features, svpwm_pkg::FeatDpwm);
+  localparam bit HasSix   = svpwm_pkg::has(Features, svpwm_pkg::FeatSixstep);
+  localparam bit HasDtc   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtc);
+  localparam bit HasCarry = svpwm_pkg::has(Features, svpwm_pkg::FeatCarry);
+  localparam bit HasDtf   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtf);
+  localparam bit HasUpd   = svpwm_pkg::has(Features, svpwm_pkg::FeatUpd);
+  localparam bit HasPresc = svpwm_pkg::has(Features, svpwm_pkg::FeatPresc);
+  localparam bit HasSync  = svpwm_pkg::has(Features, svpwm_pkg::FeatSync);
+  if ((Features & ~svpwm_pkg::CfgAll) != 0 || (Features & 32'h1f) == 0) begin : gen_bad_features
+`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
+    initial $fatal(1, "svpwm_core: Features 'h%0h: unknown bits or no input mode (%m)", Features);
+`else              // at elaboration (Yosys formats $display only, then stops at $error)
+    initial $display("svpwm_core: Features 'h%0h: unknown bits or no input mode (%m)", Features);
+    $error("svpwm_core: Features 'h%0h: unknown bits or no input mode", Features);
+`endif
+  end
   if (MinPeriod < MinPeriodFloor || MinPeriod >= (1 << CntWidth)) begin : gen_bad_min_period
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
     initial $fatal(1, "svpwm_core: MinPeriod must be >= %0d (SampleLead + 4), got %0d (%m)",
@@ -185,14 +214,14 @@ module svpwm_core #(
     end
   end
 
-  // the compact variant has no sync start, no update modes, no prescaler (the inputs are ignored)
+  // a build without the sync start, the update modes or the prescaler ignores those inputs
   logic       sync_en;
   logic [1:0] upd_in;
   logic [7:0] presc_in;
 
-  assign sync_en  = Compact ? 1'b0 : sync_en_i;
-  assign upd_in   = Compact ? 2'd0 : upd_i;
-  assign presc_in = Compact ? 8'd0 : presc_i;
+  assign sync_en  = HasSync ? sync_en_i : 1'b0;
+  assign upd_in   = HasUpd ? upd_i : 2'd0;
+  assign presc_in = HasPresc ? presc_i : 8'd0;
 
   assign run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (run || !sync_en || sync_i);
 
@@ -218,9 +247,10 @@ module svpwm_core #(
       if (lock_i) locked_q <= 1'b1;
       if (!locked_q) begin
         dt_cfg_q  <= dt_i;
-        dtf_cfg_q <= dtf_en_i ? dtf_i : dt_i;
-        dtx_cfg_q <= (dtf_en_i && dtf_i > dt_i) ? dtf_i : dt_i;
-        dfg_cfg_q <= dtf_en_i && dtf_i > dt_i;
+        // (a build without DTF: dtf = dt from here on, in every stage; synthesis merges the copies)
+        dtf_cfg_q <= (HasDtf && dtf_en_i) ? dtf_i : dt_i;
+        dtx_cfg_q <= (HasDtf && dtf_en_i && dtf_i > dt_i) ? dtf_i : dt_i;
+        dfg_cfg_q <= HasDtf && dtf_en_i && dtf_i > dt_i;
         mp_cfg_q  <= mp_i;
         cbc_q     <= trip_cbc_i;
         safe_lo_q <= safe_lo_i;
@@ -233,9 +263,9 @@ module svpwm_core #(
   // so both change together at a valley, and so does "dtf > dt" (dfg_*), which selects the larger one
   // for the calculator's minimum-pulse threshold thr = max(dt, dtf) + mp: a 10-bit compare in front of
   // that adder would not meet 48 MHz on the UP5K, and a registered max or thr at every stage adds 30
-  // flip-flops to the enables the run register drives (the board's slowest path). The compact core has
-  // one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not built)
-  // and its calculator reads dt_next_q + mp_next_q.
+  // flip-flops to the enables the run register drives (the board's slowest path). A build without DTF
+  // has one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not
+  // built) and, without UPD too, its calculator reads dt_next_q + mp_next_q.
   logic [DtWidth-1:0] dtf_cfg, dtx_cfg, dtf_act;
   logic [DtWidth-1:0] dtf_use_q, dtf_next_d, dtf_next_q, dtf_d, dtf_q;
   logic [DtWidth-1:0] dt_use_q, dt_next_q, dt_q;
@@ -243,9 +273,9 @@ module svpwm_core #(
   logic [DtWidth-1:0] calc_dtx;
   logic [DtWidth-1:0] calc_mp;
 
-  assign dtf_cfg  = Compact ? dt_q      : dtf_cfg_q;   // compact: = dtf_act, so no dtf compare (dtf_ne 0)
-  assign dtx_cfg  = Compact ? dt_cfg_q  : dtx_cfg_q;
-  assign dtf_act  = Compact ? dt_q      : dtf_q;
+  assign dtf_cfg  = HasDtf ? dtf_cfg_q : dt_q;        // one dead time: = dtf_act, so no compare (dtf_ne 0)
+  assign dtx_cfg  = HasDtf ? dtx_cfg_q : dt_cfg_q;
+  assign dtf_act  = HasDtf ? dtf_q     : dt_q;
 
   // ---- input clamps (bad input gets the nearest legal value and a flag) --------------------------
   logic [CntWidth-1:0]         period_clamped, period_low;
@@ -284,9 +314,10 @@ module svpwm_core #(
 
   // -(W'(x)), not -W'(x): Yosys 0.70 drops a unary operator in front of a size cast (the simulators do not;
   // tb/cocotb/svpwm_core/test_svpwm_core_yosys.py checks the clamp on Yosys' netlist)
-  assign freq_over      = freq_i > FreqWidth'(FreqMax) || freq_i < -(FreqWidth'(FreqMax));
-  assign freq_clamped   = !freq_over ? freq_i : freq_i[FreqWidth-1] ? -(FreqWidth'(FreqMax))
-                                                                     : FreqWidth'(FreqMax);
+  // (a build without FREQ and VF has no phase accumulator: freq_i is not read)
+  assign freq_over      = HasAcc && (freq_i > FreqWidth'(FreqMax) || freq_i < -(FreqWidth'(FreqMax)));
+  assign freq_clamped   = !HasAcc ? '0 : !freq_over ? freq_i : freq_i[FreqWidth-1] ? -(FreqWidth'(FreqMax))
+                                                                                  : FreqWidth'(FreqMax);
 
   // ---- carrier -----------------------------------------------------------------------------------
   logic [CntWidth-1:0] count, period_act, period_load;
@@ -410,8 +441,8 @@ module svpwm_core #(
   logic [2:0]  isign_q;
   logic        in_vf, in_xy;
 
-  assign in_vf = !Compact && mode_i == 3'(svpwm_pkg::ModeVf);
-  assign in_xy = !Compact && (mode_i == 3'(svpwm_pkg::ModeAb) || mode_i == 3'(svpwm_pkg::ModeDq));
+  assign in_vf = HasVf && mode_i == 3'(svpwm_pkg::ModeVf);
+  assign in_xy = HasXy && (mode_i == 3'(svpwm_pkg::ModeAb) || mode_i == 3'(svpwm_pkg::ModeDq));
   assign s0_d  = in_vf ? vf_boost_i : in_xy ? v1_i : m_i;
   assign s1_d  = in_vf ? vf_slope_i : theta_i;
   assign s2_d  = in_vf ? vf_mmax_i : v2_i;
@@ -432,11 +463,11 @@ module svpwm_core #(
       s0_q   <= s0_d;
       s1_q   <= s1_d;
       s2_q   <= s2_d;
-      dpwm_q <= dpwm_i;
-      dtc_q   <= !Compact && dtc_en_i;
-      isign_q <= isign_i;
-      om_q    <= !Compact && om_i;
-      vsc_q   <= !Compact && vsc_en_i;
+      dpwm_q <= HasDpwm ? dpwm_i : 2'd0;
+      dtc_q   <= HasDtc && dtc_en_i;
+      isign_q <= HasDtc ? isign_i : 3'd0;
+      om_q    <= HasSix && om_i;
+      vsc_q   <= HasCarry && vsc_en_i;
     end
   end
 
@@ -444,14 +475,19 @@ module svpwm_core #(
   logic [2:0]            acc_sector;
   logic [PhaseWidth-1:0] acc_angle;
 
-  svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(1'b0)) u_phase (
-    .clk_i    (clk_i),
-    .rst_ni   (rst_ni),
-    .run_i    (run),
-    .step_i   (freq_q),             // the sampled frequency word steps the angle from the sample on
-    .sector_o (acc_sector),
-    .angle_o  (acc_angle)
-  );
+  if (HasAcc) begin : gen_phase
+    svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(1'b0)) u_phase (
+      .clk_i    (clk_i),
+      .rst_ni   (rst_ni),
+      .run_i    (run),
+      .step_i   (freq_q),           // the sampled frequency word steps the angle from the sample on
+      .sector_o (acc_sector),
+      .angle_o  (acc_angle)
+    );
+  end else begin : gen_no_phase     // POLAR / AB / DQ only: the angle comes with the reference
+    assign acc_sector = '0;
+    assign acc_angle  = '0;
+  end
 
   // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow), registered:
   // one clock after freq_q, i.e. from the calculator's first step on (its programs read it in step 1 at
@@ -515,11 +551,11 @@ module svpwm_core #(
     end
   end
 
-  // ---- the calculator: reference -> snapped compare values (every mode; the compact program: FREQ) ---
+  // ---- the calculator: reference -> snapped compare values (the modes and features of the build) ----
   logic [3*CntWidth-1:0] snap_cmp;
   logic                  snap_done;
 
-  svpwm_calc #(.Compact(Compact), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
+  svpwm_calc #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
     .start_i    (start_q && run),
@@ -539,13 +575,14 @@ module svpwm_core #(
     .vf_mmax_i  (s2_q),
     .dpwm_i     (dpwm_q),
     .om_i       (om_q),
-    // the compact variant's updates are valley updates only (start_q implies ev_valley_q): it reads the
-    // next-period registers directly, which hold from the sample to the next valley's sample (a whole
-    // period > the computation); calc_period_q / calc_thr_q are then removed by synthesis (80 LC, HX1K)
-    // full: calc_period_q / calc_thr_q, loaded at the start and valid from the first step on (the programs
-    // read them at step 2 at the earliest: model/tests/test_calc_prog.py checks it)
-    .period_i   (Compact ? period_next_q : calc_period_q),
-    .thr_i      (Compact ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_q),
+    // a build without the peak / double update updates at valleys only (start_q implies ev_valley_q): it
+    // reads the next-period registers directly, which hold from the sample to the next valley's sample (a
+    // whole period > the computation), and with one dead time dt_next_q + mp_next_q; calc_period_q /
+    // calc_thr_q are then removed by synthesis (80 LC on the HX1K). Otherwise calc_period_q / calc_thr_q,
+    // loaded at the start and valid from the first step on (the programs read them at step 2 at the
+    // earliest: model/tests/test_calc_prog.py checks it)
+    .period_i   (!HasUpd ? period_next_q : calc_period_q),
+    .thr_i      ((!HasUpd && !HasDtf) ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_q),
     .isign_i    (isign_q),
     .hdr_i      (calc_hdr_q),
     .hdf_i      (calc_hdf_q),
@@ -840,11 +877,11 @@ module svpwm_core #(
     if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run));
     if (dt_q != $past(dt_q) || dtf_act != $past(dtf_act) || mp_q != $past(mp_q)) assert ($past(load));
   end
-  // the compact calculator reads period_next_q / dt_next_q + mp_next_q at its start: only valley updates
+  // without the update modes the calculator reads period_next_q / dt_next_q + mp_next_q: valley updates only
   // (the update mode stays "valley", so every computation starts from a valley sample)
-  always_comb if (Compact && rst_ni) assert (updv_q && !updp_q);
+  always_comb if (!HasUpd && rst_ni) assert (updv_q && !updp_q);
   always_comb if (rst_ni) assert (cz_q == (cnt_q == '0));
-  always_comb if (Compact && rst_ni && start_q) assert (ev_valley_q);
+  always_comb if (!HasUpd && rst_ni && start_q) assert (ev_valley_q);
   // the poles are valid only while the core runs (the legs' enable reads en_i and pole_valid alone)
   always_comb if (rst_ni && pole_valid) assert (run);
   // a locked configuration does not change
@@ -854,9 +891,9 @@ module svpwm_core #(
   // not vacuous: gates switch, trips happen and release, compare values load
   always_comb cover (rst_ni && f_hi[0] && running_o);
   always_comb cover (rst_ni && f_lo[1] && running_o && dt_q > DtWidth'(2));
-  // asymmetric dead times in force and gates switching (the full core; the compact one has one dead time);
+  // asymmetric dead times in force and gates switching (builds with DTF; the others have one dead time);
   // the registered max(dt, dtf) and thresholds are those of the dead times beside them
-  if (!Compact) begin : gen_f_dtf
+  if (HasDtf) begin : gen_f_dtf
     function automatic logic [DtWidth:0] f_thr(input logic [DtWidth-1:0] dt, input logic [DtWidth-1:0] dtf,
                                                input logic [DtWidth-1:0] mp);
       f_thr = {1'b0, (dt >= dtf) ? dt : dtf} + {1'b0, mp};
@@ -878,7 +915,7 @@ module svpwm_core #(
   // CntMax + 1; per leg, f_*off_q: clocks the pin has been off before this one, f_*off_dt_q: the other
   // gate's dead time in force in the first clock it was off, f_*off_rst_q: a reset came since it went off.
   // (deadtime reads dt_q / dtf_act a clock ahead: the dead time in force is their value a clock ago.)
-  localparam int unsigned FW = DtWidth + 1;
+  localparam logic [31:0] FW = DtWidth + 1;
   localparam logic [FW-1:0] FSat = {1'b1, {DtWidth{1'b0}}};   // 2^DtWidth = CntMax + 1
   logic [FW-1:0]      f_rel_q = '0;
   logic [DtWidth-1:0] f_dtu_q = '0, f_dtfu_q = '0;
@@ -924,8 +961,8 @@ module svpwm_core #(
   // on after the hold
   logic f_hi_ever_q = 1'b0;
   always_ff @(posedge clk_i) if (f_hi[0]) f_hi_ever_q <= 1'b1;
-  // (the full core only: the compact core's first gate comes too late for the cover depth)
-  if (!Compact) begin : gen_f_f1_cover
+  // (not the tiny core: its first gate comes too late for the cover depth)
+  if (!svpwm_pkg::is_tiny(Features)) begin : gen_f_f1_cover
     always_ff @(posedge clk_i) if (f_past_valid)
       cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
   end

@@ -12,7 +12,7 @@
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
 //               MinPeriod defaults to the core's default of the variant (svpwm_pkg::min_period: 251, compact 230)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
-//   Compact   - 1: the compact variant (small FPGAs): svpwm_core's compact core (FREQ mode, continuous
+//   Compact   - 1: the compact variant (small FPGAs): svpwm_core's tiny build (FREQ mode, continuous
 //               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
 //               (docs/registers.md, column compact; the others read 0; no MP: the core runs with a
 //               minimum pulse of 0, every gate pulse still lasts >= DT); read back in FEATURES.compact
@@ -29,7 +29,8 @@ module svpwm_mmio #(
   parameter bit         Compact   = 1'b0,
   parameter int         AddrWidth = 8,
   parameter bit         AddrEarly = 1'b0,
-  parameter int         MinPeriod = svpwm_pkg::min_period(Compact),
+  parameter int         MinPeriod = svpwm_pkg::min_period(Compact ? svpwm_pkg::CfgTiny
+                                                                      : svpwm_pkg::CfgFull),
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
   parameter int         ClkHz     = 0,
@@ -135,7 +136,8 @@ module svpwm_mmio #(
 
   svpwm_core #(
     .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
-    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol), .Compact (Compact)
+    .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol),
+    .Features (Compact ? svpwm_pkg::CfgTiny : svpwm_pkg::CfgFull)   // (the register block: full or tiny)
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),

@@ -29,7 +29,7 @@ from __future__ import annotations
 import random
 from dataclasses import dataclass, field
 
-from . import fixed
+from . import config, fixed
 
 W_MIN = 26                     # adder width floor: the V/f candidate boost + fa slope / 2^8 (25 bits) + sign
 
@@ -148,10 +148,21 @@ def _sx(v: int, w: int) -> int:
 
 @dataclass
 class Program:
-    """Steps 1..n of the calculator (index 0 is the idle word: it only selects step 1's operand)."""
-    compact: bool
-    dsp: bool
+    """Steps 1..n of the calculator (index 0 is the idle word: it only selects step 1's operand).
+    features: the build's feature mask (config.py; only its calculator bits, config.CALC, shape the program)."""
+    features: int
+    tiny: bool = False
     steps: list = field(default_factory=lambda: [dict()])
+
+    @property
+    def dsp(self) -> bool:
+        return config.has(self.features, "dsp")
+
+    @property
+    def compact(self) -> bool:
+        """The tiny configuration's program (TRANSITIONAL: the tiny core runs rtl/svpwm_duty_lite.sv, which
+        reads no mode; this program, FREQ without an error path, is the model's only)."""
+        return self.tiny
 
     @property
     def latency(self) -> int:
@@ -303,10 +314,10 @@ class Builder:
     the condition bits are registered), a product, a ROM word (four steps after the angle it is addressed by),
     the sector's Table 4-3 codes (registered from the sector: an out step two steps after the sector's load)."""
 
-    def __init__(self, compact: bool, dsp: bool):
-        self.p = Program(compact=compact, dsp=dsp)
+    def __init__(self, features: int, tiny: bool = False):
+        self.p = Program(features=features, tiny=tiny)
         self.t = 2                            # step 1 is empty (Program.words)
-        self.dsp = dsp
+        self.dsp = dsp = self.p.dsp
         self.mul_lat = 2 if dsp else 17
         self.wt: dict[int, int] = {}          # RAM address -> step that writes it
         self.ft: dict[int, int] = {}          # flag -> step that sets it
@@ -508,22 +519,23 @@ class Machine:
         junk: start from random state (registers, flags, the RAM's working words) as the RTL does after an
         earlier or aborted computation; the result must not depend on it."""
         W, mask = self.W, self.mask
-        mode = 0 if self.prog.compact else inp.get("mode", 0)
+        f = self.prog.features
+        mode = inp_mode(inp, config.TINY if self.prog.tiny else f)
         is_vf, is_ab, is_dq, is_th = mode == fixed.MODE_VF, mode == fixed.MODE_AB, mode == fixed.MODE_DQ, \
             mode in (fixed.MODE_POLAR, fixed.MODE_DQ)
         is_err = mode > fixed.MODE_DQ
-        dpwm = 0 if self.prog.compact else inp.get("dpwm", 0)
-        ins = [inp.get("m", 0), inp.get("theta", 0), inp.get("v1", 0), inp.get("v2", 0),
-               inp.get("vf_boost", 0), inp.get("vf_slope", 0), inp.get("vf_mmax", 0), inp.get("fabs", 0),
-               inp["period"], inp["thr"], 0, 0, 0,
-               fixed.M_VERTEX if inp.get("om", 0) and not (is_ab or is_dq) else 0xFFFF]
-        hdr, hdf = inp.get("hdr", 0), inp.get("hdf", 0)
-        carry = tuple(inp.get("carry", (0, 0, 0)))
-        isign = 0 if self.prog.compact else inp.get("isign", 0) & 7
-        if self.prog.compact:
-            ins = [ins[0]] + [0] * 7 + ins[8:10] + [0, 0, 0, 0xFFFF]
-            hdr = hdf = 0
-            carry = (0, 0, 0)
+        dpwm = inp.get("dpwm", 0) if config.has(f, "dpwm") else 0
+        # the inputs of features the build lacks are not read (the RTL's input multiplexer has 0 there)
+        has = lambda n: config.has(f, n)                   # noqa: E731
+        th_in, xy_in, vf_in = has("polar") or has("dq"), has("ab") or has("dq"), has("vf")
+        ins = [inp.get("m", 0), inp.get("theta", 0) if th_in else 0, inp.get("v1", 0) if xy_in else 0,
+               inp.get("v2", 0) if xy_in else 0] + \
+            [inp.get(n, 0) if vf_in else 0 for n in ("vf_boost", "vf_slope", "vf_mmax", "fabs")] + \
+            [inp["period"], inp["thr"], 0, 0, 0,
+             fixed.M_VERTEX if has("sixstep") and inp.get("om", 0) and not (is_ab or is_dq) else 0xFFFF]
+        hdr, hdf = (inp.get("hdr", 0), inp.get("hdf", 0)) if has("dtc") else (0, 0)
+        carry = tuple(inp.get("carry", (0, 0, 0))) if has("carry") else (0, 0, 0)
+        isign = inp.get("isign", 0) & 7 if has("dtc") else 0
         ins += [0] * 2
         ram = [0] * RAM_WORDS
         for a, v in RAM_INIT.items():
@@ -686,11 +698,32 @@ class Machine:
 
 
 # ---- the program -------------------------------------------------------------------------------------------
-def build(compact: bool = False, dsp: bool = True) -> Program:
-    """The calculator's program: per phase fixed.snap_min_pulse of fixed.modulate(...), every input mode (the
-    compact program: FREQ mode and continuous SVPWM only). Each part names the fixed.py function it computes."""
-    g = Builder(compact, dsp)
+MODE_NOT_BUILT = 7             # the mode code a build gives the calculator for a mode it does not have
 
+
+def inp_mode(inp: dict, features: int) -> int:
+    """The mode the calculator of a build computes for inp["mode"]: the mode, or MODE_NOT_BUILT (the zero
+    vector and err, like an invalid code) when the build lacks it; the tiny build reads no mode (FREQ)."""
+    if features == config.TINY:
+        return fixed.MODE_FREQ
+    mode = inp.get("mode", 0)
+    return mode if mode > fixed.MODE_DQ or config.mode_built(features, mode) else MODE_NOT_BUILT
+
+
+def build(features: int = config.FULL, tiny: bool | None = None) -> Program:
+    """The calculator's program for a build (config.py): per phase fixed.snap_min_pulse of fixed.modulate(...)
+    in every input mode the build has; the parts of features it lacks are left out (the tiny program: FREQ
+    mode, continuous SVPWM, no error path). Each part names the fixed.py function it computes."""
+    f = features & config.CALC
+    has = lambda n: config.has(f, n)                      # noqa: E731
+    compact = features == config.TINY if tiny is None else tiny
+    g = Builder(features, compact)
+    dsp = g.dsp
+    th_modes = has("polar") or has("dq")                  # theta_i -> sector, angle
+    ang_modes = has("freq") or has("vf") or has("polar")  # the polar dwell times T1, T2 of (m, angle)
+    xy_modes = has("ab") or has("dq")                     # X, Y, Z -> sector, dwell times
+    sixstep = has("sixstep") and ang_modes
+    shifted = has("dpwm") or has("dtc") or has("carry")   # C + sh + the compensation / carry
     def sines(sb_addr, sa_addr, tmp):
         """fixed.sines of the angle in ANG (i = ANG[15:8], fr = ANG[7:0]): sb = R[i] + round(e1 fr / 2^8),
         sa = R[256-i] - round(e2 fr / 2^8), e1 = R[i+1] - R[i], e2 = R[256-i] - R[255-i] (both >= 0)."""
@@ -721,13 +754,15 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
             g.add(prod(PSH8, sign="neg"))                     # sa
         g.write(sa_addr)
 
-    if not compact:
+    if th_modes:
         # ---- POLAR / DQ: 6 theta = sector . a16 (fixed.theta_split) -> sector, ANG ------------------------
         g.load(inp(IN_THETA))
         g.add2(inp(IN_THETA))                                 # 3 theta
         g.add2(ram(R_ZERO))                                   # 6 theta
         g.put(g.t, ald=1, sec=SEC_THETA, pred=PRED_TH)        # from ACC at the start of the step
+    if has("vf"):
         # ---- VF: m = min(m_max, boost + round(fa slope / 2^8)) (fixed.vf_m) -> S_M + 1; m_i -> S_M --------
+        g.wait(3)                                             # fabs_i is valid from step 1 (read in t - 2)
         rv = g.mul(inp(IN_FABS), inp(IN_SLOPE))
         g.load(inp(IN_MMAX))
         g.write(S_VF0)                                        # {m_max, cand}
@@ -740,45 +775,49 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.cmp(inp(IN_MMAX, inv=True), F_VF)                   # cand - m_max < 0: cand, else m_max
         g.load(ram(S_VF0, rc=RC_C, ci=F_VF))
         g.write(S_M + 1)
+    elif ang_modes:
+        g.load(inp(IN_M))
+        g.write(S_M)
+    m_sel = ram(S_M, rc=RC_C, ci=C_VF) if has("vf") else ram(S_M)
+    if sixstep:
         # ---- overmodulation gain (fixed.om_gain): g = 2^8 + 2 max(0, m - MV) (MV = 0xFFFF: g = 2^8) -> R_G ----
-        g.load(ram(S_M, rc=RC_C, ci=C_VF))
+        g.load(m_sel)
         g.add(inp(IN_MV, inv=True), fset=1, fidx=F_S1)       # m - MV (F_S1: free until the minimum pulse)
         g.add2(ram(R_K256))                                  # 2 (m - MV) + 2^8
         g.write(R_A)                                         # {candidate, 2^8} (R_K256 = R_A + 1)
         g.load(ram(R_A, rc=RC_C, ci=F_S1))
         g.write(R_G)
-    else:
-        g.load(inp(IN_M))
-        g.write(S_M)
-        g.wait(3)
     # ---- FREQ / VF / POLAR (and DQ's trig): sb, sa of theta' -> S_SB, S_SA ------------------------------
-    sines(S_SB, S_SA, S_VF1)
-    # ---- T1 = round(m sa / 2^15), T2 = round(m sb / 2^15) (fixed.duties) -> polar slots of R_T1, R_T2 -----
-    m_sel = ram(S_M) if compact else ram(S_M, rc=RC_C, ci=C_VF)
-    r1 = g.mul(m_sel, ram(S_SA))
-    if dsp:
-        r2 = g.mb(ram(S_SB))
-        g.wait(r1)
-        g.load(prod(PSH15))                                   # T1
-        assert g.t == r2
-        g.write(R_T1)
-        g.load(prod(PSH15))                                   # T2
-    else:
-        g.wait(r1)
-        g.load(prod(PSH15))
-        g.write(R_T1)
-        r2 = g.mb(ram(S_SB))
-        g.wait(r2)
-        g.load(prod(PSH15))
-    g.write(R_T2)
-    g.hold()
+    if ang_modes or has("dq"):
+        sines(S_SB, S_SA, S_VF1)
+    if ang_modes:
+        # ---- T1 = round(m sa / 2^15), T2 = round(m sb / 2^15) (fixed.duties) -> polar slots of R_T1, R_T2 ---
+        r1 = g.mul(m_sel, ram(S_SA))
+        if dsp:
+            r2 = g.mb(ram(S_SB))
+            g.wait(r1)
+            g.load(prod(PSH15))                               # T1
+            assert g.t == r2
+            g.write(R_T1)
+            g.load(prod(PSH15))                               # T2
+        else:
+            g.wait(r1)
+            g.load(prod(PSH15))
+            g.write(R_T1)
+            r2 = g.mb(ram(S_SB))
+            g.wait(r2)
+            g.load(prod(PSH15))
+        g.write(R_T2)
+        g.hold()
 
-    if not compact:
-        # ---- AB: X = v_beta, Y = a + v_beta / 2, Z = v_beta / 2 - a, a = sqrt3/2 v_alpha (fixed.ab_dwell) ----
+    if xy_modes:
+        # ---- AB / DQ: the signs of v1, v2 and |v1| -> R_A ----------------------------------------------------
         g.load(inp(IN_V1), fset=1, fidx=F_V1N)
         g.load(inp(IN_V2), fset=1, fidx=F_V2N)
-        g.load(inp(IN_V1, binv=BINV_C, bci=F_V1N, cin=CIN_BINV))   # |v_alpha|
+        g.load(inp(IN_V1, binv=BINV_C, bci=F_V1N, cin=CIN_BINV))   # |v_alpha| (|v_d|)
         g.write(R_A)
+    if has("ab"):
+        # ---- AB: X = v_beta, Y = a + v_beta / 2, Z = v_beta / 2 - a, a = sqrt3/2 v_alpha (fixed.ab_dwell) ----
         ra_ = g.mul("acc", ram(R_SQ3))                        # |v_alpha| sqrt3/2
         g.load(inp(IN_V2))
         g.add2(ram(R_ZERO))                                   # h = v_beta << 1 (dwell units / 2)
@@ -792,6 +831,7 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.load(ram(S_VF0))
         g.add(prod(PSH14, sign=C_NV1N))                       # Z = h - a
         g.write(R_Z, pred=PRED_AB)
+    if has("dq"):
         # ---- DQ: inverse Park in theta's sector frame (fixed.dq_trig, fixed.dq_dwell) ------------------------
         g.load(aux(AS_ANG))
         g.add(ram(R_K32, inv=True), fset=1, fidx=F_HALF)      # a16 - 2^15 (F_HALF: theta' < 30 deg)
@@ -825,6 +865,7 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.add(ram(R_Z, inv=True))                             # Y = X - Z
         g.write(R_Y, pred=PRED_DQ)
         g.hold()
+    if xy_modes:
         # ---- sector and dwell times from X, Y, Z (fixed.xyz_sector) -> xyz slots of R_T1, R_T2 ------------
         for v, fn, fp, slot in ((R_X, F_NX, F_PX, 0), (R_Z, F_NZ, F_PZ, 1), (R_Y, F_NY, F_PY, 2)):
             g.load(ram(v), fset=1, fidx=fn)
@@ -837,7 +878,8 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.load(ram(R_ABS, rc=RC_SW1))                         # T1 = |q_{s+1}|
         g.write(R_T1 + 1, pred=PRED_XY)
         g.hold()
-        g.put(g.t, sec=SEC_ERR)                               # an invalid mode: sector 0, T1 = T2 = 0
+    if not compact:
+        g.put(g.t, sec=SEC_ERR)                           # an invalid mode: sector 0, T1 = T2 = 0
     merge = dict(rc=RC_MERGE) if not compact else {}
 
     # ---- hexagon clamp (fixed.hex_clamp): s = T1 + T2 > 2^16: q = floor(min 2^16 / s), the other 2^16 - q -----
@@ -861,13 +903,13 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     for _ in range(15):
         g.hold()
         g.add2(ram(R_S, binv=BINV_NSIGN, cin=CIN_BINV), qsh=1)
-    if compact or not dsp:
+    if not dsp:
         g.load(aux(AS_Q))                                 # q
         g.write(R_MIN)
         g.load(ram(R_K64))
         g.add(aux(AS_Q, inv=True))                        # 2^16 - q
         g.write(R_MAX)
-        if not compact:                                   # six-step law (below: the same on the DSP)
+        if sixstep:                                       # six-step law (below: the same on the DSP)
             g.load(ram(R_K32))
             g.add(aux(AS_Q, inv=True))                    # d = 2^15 - q
             rg = g.mul("acc", ram(R_G))
@@ -890,18 +932,22 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         g.add(ram(R_Y, inv=True))                         # Dm
         g.write(R_Z)
 
-    if dsp and not compact:
+    if dsp:
         # six-step law (fixed.hex_clamp): q' = max(0, 2^15 - round(g (2^15 - q) / 2^8)) (g = 2^8: q' = q); the
         # products 2^8 P (the base), lo P and hi P follow on the multiplier with MB = P
-        g.load(ram(R_K32))
-        g.add(aux(AS_Q, inv=True))                        # d = 2^15 - q
-        rg = g.mul("acc", ram(R_G))
-        g.load(ram(R_K32))
-        g.wait(rg)
-        g.add(prod(PSH8, sign="neg"), fset=1, fidx=F_S1)  # 2^15 - round(g d / 2^8)
-        g.write(R_SNAP)                                   # {q', 0} (R_SNAP + 1 is a zero word)
-        rb = g.mul(ram(R_K256), inp(IN_PERIOD))           # 2^8 P (in the flag's wait)
-        g.load(ram(R_SNAP, rc=RC_C, ci=F_S1))             # q' (0 if negative)
+        if sixstep:
+            g.load(ram(R_K32))
+            g.add(aux(AS_Q, inv=True))                    # d = 2^15 - q
+            rg = g.mul("acc", ram(R_G))
+            g.load(ram(R_K32))
+            g.wait(rg)
+            g.add(prod(PSH8, sign="neg"), fset=1, fidx=F_S1)   # 2^15 - round(g d / 2^8)
+            g.write(R_SNAP)                               # {q', 0} (R_SNAP + 1 is a zero word)
+            rb = g.mul(ram(R_K256), inp(IN_PERIOD))       # 2^8 P (in the flag's wait)
+            g.load(ram(R_SNAP, rc=RC_C, ci=F_S1))         # q' (0 if negative)
+        else:
+            rb = g.mul(ram(R_K256), inp(IN_PERIOD))       # 2^8 P
+            g.load(aux(AS_Q))                             # q
         g.write(R_MIN)
         g.wait(rb)
         g.load(prod(PSH0, rnd=False))                     # 2^8 P
@@ -947,7 +993,7 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
         res.append((k, addr))
     # ---- zero-vector placement (fixed.dpwm_shift): every C + sh, and the dead-time compensation
     # (fixed.dtc_shift): + hdf for a negative current, - hdr otherwise (the phase of each class by its sign) ---
-    if not compact:
+    if has("dpwm"):
         g.cmp(inp(IN_PERIOD, inv=True, cin=CIN_0), F_DP60, shift=True)   # 2 mid - P - 1 < 0: 2 mid <= P
         g.load(inp(IN_PERIOD))
         g.add(ram(R_ABS, inv=True))                       # P - hi
@@ -970,20 +1016,22 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
     g.write(R_P2H)
     def shift(k, addr):                                   # C + sh + the compensation of class k -> ACC
         g.load(ram(addr))
-        g.add(ram(R_A))
-        g.add(inp({OUT_HI: IN_DHI, OUT_LO: IN_DLO, OUT_MID: IN_DMID}[k]))
+        if has("dpwm"):
+            g.add(ram(R_A))
+        if has("dtc") or has("carry"):
+            g.add(inp({OUT_HI: IN_DHI, OUT_LO: IN_DLO, OUT_MID: IN_DMID}[k]))
 
-    if not compact:
+    if shifted:
         shift(*res[0])
     for i, (k, addr) in enumerate(res):
-        if compact:
+        if not shifted:
             g.load(ram(addr))
         g.write(R_SNAP)                                   # c
         g.cmp(inp(IN_THR, inv=True), F_S1)                # c - thr < 0
         g.cmp(inp(IN_THR, inv=True), F_S2, shift=True)    # 2c - thr < 0
         g.cmp(ram(R_SNAP + 4, inv=True, cin=CIN_0), F_S3)  # c - (P - hthr) - 1 < 0: not c > P - hthr
         g.cmp(ram(R_P2H, inv=True, cin=CIN_0), F_S4, shift=True)
-        nxt = not compact and i + 1 < len(res)
+        nxt = shifted and i + 1 < len(res)
         if nxt:                                           # the next class's shift while the flags settle
             shift(*res[i + 1])
             g.write(res[i + 1][1])
@@ -998,36 +1046,43 @@ def build(compact: bool = False, dsp: bool = True) -> Program:
 _CACHE: dict = {}
 
 
-def program(compact: bool = False, dsp: bool = True) -> Program:
-    key = (compact, dsp)
+def program(features: int = config.FULL) -> Program:
+    """The program of a build (its calculator features: config.CALC; the tiny build's own)."""
+    key = (features == config.TINY, features & config.CALC)
     if key not in _CACHE:
-        _CACHE[key] = build(compact, dsp)
+        _CACHE[key] = build(features if key[0] else key[1], tiny=key[0])
     return _CACHE[key]
 
 
-def calc_latency(compact: bool = False, dsp: bool | None = None) -> int:
-    """Clocks from svpwm_calc start_i to done_o (the full core uses the DSP, the compact core the serial unit)."""
-    return program(compact, (not compact) if dsp is None else dsp).latency
+def program_key(features: int) -> int:
+    """The calculator bits of a build (config.CALC): the builds of one key run one program (not the tiny
+    build: TRANSITIONAL, its core runs rtl/svpwm_duty_lite.sv)."""
+    return features & config.CALC
 
 
-def expect(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int], bool, bool]:
+def calc_latency(features: int = config.FULL) -> int:
+    """Clocks from svpwm_calc start_i to done_o of a build's program."""
+    return program(features).latency
+
+
+def expect(inp: dict, features: int = config.FULL) -> tuple[int, tuple[int, int, int], bool, bool]:
     """What the calculator must return: fixed.modulate + fixed.snap_min_pulse per phase."""
-    return expect_carry(inp, compact)[:4]
+    return expect_carry(inp, features)[:4]
 
 
-def expect_carry(inp: dict, compact: bool = False) -> tuple[int, tuple[int, int, int], bool, bool,
-                                                            tuple[int, int, int]]:
-    """expect() and the volt-second carry out of each phase (fixed.snap_carry; inp["carry"]: the carry in)."""
+def expect_carry(inp: dict, features: int = config.FULL) -> tuple[int, tuple[int, int, int], bool, bool,
+                                                                   tuple[int, int, int]]:
+    """expect() and the volt-second carry out of each phase (fixed.snap_carry; inp["carry"]: the carry in).
+    The inputs of features the build lacks are not read (a mode it lacks: the zero vector and err)."""
     P, thr = inp["period"], inp["thr"]
-    if compact:
-        sector, c, sat, err = fixed.modulate(fixed.MODE_FREQ, inp.get("sector", 0), inp.get("a16", 0), P,
-                                             m=inp.get("m", 0))
-    else:
-        sector, c, sat, err = fixed.modulate(
-            inp.get("mode", 0), inp.get("sector", 0), inp.get("a16", 0), P, freq=inp.get("freq", 0),
-            m=inp.get("m", 0), theta=inp.get("theta", 0), v1=inp.get("v1", 0), v2=inp.get("v2", 0),
-            vf_boost=inp.get("vf_boost", 0), vf_slope=inp.get("vf_slope", 0), vf_mmax=inp.get("vf_mmax", 0),
-            dpwm=inp.get("dpwm", 0), isign=inp.get("isign", 0) & 7, hdr=inp.get("hdr", 0), hdf=inp.get("hdf", 0),
-            om=inp.get("om", 0), carry=tuple(inp.get("carry", (0, 0, 0))))
+    has = lambda n: config.has(features, n)               # noqa: E731
+    sector, c, sat, err = fixed.modulate(
+        inp_mode(inp, features), inp.get("sector", 0), inp.get("a16", 0), P, freq=inp.get("freq", 0),
+        m=inp.get("m", 0), theta=inp.get("theta", 0), v1=inp.get("v1", 0), v2=inp.get("v2", 0),
+        vf_boost=inp.get("vf_boost", 0), vf_slope=inp.get("vf_slope", 0), vf_mmax=inp.get("vf_mmax", 0),
+        dpwm=inp.get("dpwm", 0) if has("dpwm") else 0, isign=inp.get("isign", 0) & 7 if has("dtc") else 0,
+        hdr=inp.get("hdr", 0) if has("dtc") else 0, hdf=inp.get("hdf", 0) if has("dtc") else 0,
+        om=inp.get("om", 0) if has("sixstep") else 0,
+        carry=tuple(inp.get("carry", (0, 0, 0))) if has("carry") else (0, 0, 0))
     sc = [fixed.snap_carry(x, P, thr) for x in c]
     return sector, tuple(x for x, _ in sc), sat, err, tuple(e for _, e in sc)

@@ -31,7 +31,7 @@ import bisect
 from dataclasses import dataclass, field, replace
 from typing import Callable, Sequence
 
-from . import fixed
+from . import calc_prog, config, fixed
 from .deadtime import HI, LO, OFF, LegState, simulate_events
 
 
@@ -116,11 +116,18 @@ def _merge(words: dict[int, list[tuple[int, int]]], bits: int) -> list[tuple[int
     return out
 
 
-def _compact(u: Inputs) -> Inputs:
-    """Inputs as the compact core (Compact = 1) sees them: FREQ mode, SVPWM, valley updates, no prescaler,
-    one dead time, no compensation, the clamp, no carry."""
-    return replace(u, mode=fixed.MODE_FREQ, dpwm=fixed.DPWM_OFF, upd=fixed.UPD_VALLEY, presc=0, dtf=None, dtc=0,
-                   om=0, vsc=0)
+def as_built(u: Inputs, features: int) -> Inputs:
+    """Inputs as a build (config.py feature mask) sees them: the inputs of features it lacks are not read
+    (SVPWM, valley updates, no prescaler, one dead time, no compensation, the clamp, no carry; no phase
+    accumulator without FREQ and VF: freq 0), a mode it lacks is the invalid code (the zero vector and
+    cfg_err_o); the tiny build (TRANSITIONAL: the compact core's own datapath) reads no mode: FREQ."""
+    has = lambda n: config.has(features, n)               # noqa: E731
+    mode = calc_prog.inp_mode({"mode": u.mode}, features)
+    return replace(u, mode=mode, freq=u.freq if has("freq") or has("vf") else 0,
+                   dpwm=u.dpwm if has("dpwm") else fixed.DPWM_OFF, upd=u.upd if has("upd") else fixed.UPD_VALLEY,
+                   presc=u.presc if has("presc") else 0, dtf=u.dtf if has("dtf") else None,
+                   dtc=u.dtc if has("dtc") else 0, isign=u.isign if has("dtc") else 0,
+                   om=u.om if has("sixstep") else 0, vsc=u.vsc if has("carry") else 0)
 
 
 def falling_dt(u: Inputs) -> int:
@@ -137,15 +144,19 @@ class CoreModel:
     """The golden model. State carried between runs: the angle and the dead-time FSMs."""
 
     def __init__(self, sector: int = 0, angle: int = 0, compact: bool = False,
-                 min_period: int | None = None):
-        """``compact``: the core built with Compact = 1 (FREQ mode, SVPWM, valley updates; mode, dpwm, upd
-        and presc are ignored, the lead is LITE_SAMPLE_LEAD). ``min_period``: the core's MinPeriod
-        parameter (default: the default of the variant)."""
+                 min_period: int | None = None, features: int | None = None):
+        """``features``: the build (svpwm_core Features, config.py; default: full); ``compact``: the tiny
+        build (config.TINY). The inputs of features a build lacks are ignored (as_built), its lead is
+        fixed.latencies(features). ``min_period``: the core's MinPeriod parameter (default: the build's)."""
         self.theta = (sector << fixed.PHASE_WIDTH) + angle      # full angle, units 60deg / 2^PHASE_WIDTH
-        self.compact = compact
-        self.lead = fixed.LITE_SAMPLE_LEAD if compact else fixed.SAMPLE_LEAD
+        if features is None:
+            features = config.TINY if compact else config.FULL
+        self.features = features
+        self.compact = features == config.TINY
+        lat = fixed.latencies(features)
+        self.lead = lat["SAMPLE_LEAD"]
         if min_period is None:
-            min_period = fixed.LITE_MIN_PERIOD if compact else fixed.MIN_PERIOD
+            min_period = lat["MIN_PERIOD"]
         self.min_period = min_period
         self.legs = [LegState(0, 0, 0, True) for _ in range(3)]   # reset: off, the longest dead time
         # counts from the release
@@ -164,11 +175,11 @@ class CoreModel:
             pget = get
         else:
             pget = peak_inputs if callable(peak_inputs) else (lambda n: peak_inputs[n])
-        if self.compact:                    # the compact core ignores these inputs
-            get0, pget0 = get, pget
-            get = lambda n: _compact(get0(n))           # noqa: E731
-            pget = lambda n: _compact(pget0(n))         # noqa: E731
-            idle = _compact(idle)
+        if self.features != config.FULL:    # a build ignores the inputs of the features it lacks
+            feats, get0, pget0 = self.features, get, pget
+            get = lambda n: as_built(get0(n), feats)           # noqa: E731
+            pget = lambda n: as_built(pget0(n), feats)         # noqa: E731
+            idle = as_built(idle, feats)
         full = 6 << fixed.PHASE_WIDTH
         lead, min_period = self.lead, self.min_period
         r = Run()

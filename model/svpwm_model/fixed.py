@@ -453,12 +453,18 @@ _LATENCIES: dict[str, int] = {}
 
 def _latency(name: str) -> int:
     if not _LATENCIES:
-        from . import calc_prog
-        for pre, compact in (("", False), ("LITE_", True)):
-            lat = LITE_DUTY_LATENCY if compact else calc_prog.calc_latency(compact)
-            _LATENCIES.update({f"{pre}CALC_LATENCY": lat, f"{pre}SAMPLE_LEAD": lat + 1,
-                               f"{pre}MIN_PERIOD": max(lat + 1 + 4, MIN_PERIOD_BASE)})
+        from . import config
+        for pre, feats in (("", config.FULL), ("LITE_", config.TINY)):
+            _LATENCIES.update({f"{pre}{k}": v for k, v in latencies(feats).items()})
     return _LATENCIES[name]
+
+
+def latencies(features: int) -> dict[str, int]:
+    """CALC_LATENCY, SAMPLE_LEAD and MIN_PERIOD of a build (config.py feature mask; svpwm_pkg's calc_latency,
+    sample_lead and min_period of the same)."""
+    from . import calc_prog, config
+    lat = LITE_DUTY_LATENCY if features == config.TINY else calc_prog.calc_latency(features)
+    return {"CALC_LATENCY": lat, "SAMPLE_LEAD": lat + 1, "MIN_PERIOD": max(lat + 1 + 4, MIN_PERIOD_BASE)}
 
 
 def __getattr__(name: str) -> int:

@@ -2,8 +2,10 @@
 """The calculator's program (model/svpwm_model/calc_prog.py), run on the clock-exact machine model, against the
 specification: calc_prog.expect = fixed.modulate + fixed.snap_min_pulse per phase, exact (==).
 
-Programs: the full core's (every mode, DSP multiplier), the compact core's (FREQ, serial multiplier) and the full
-program on the serial multiplier (a device without a DSP). Every run starts from junk machine state (registers,
+Programs: those of the named configurations (config.CONFIGS: full, foc, vf, minimal on the DSP multiplier, tiny
+on the serial unit) and the full program on the serial multiplier (a device without a DSP). Every vector sets
+every input (all mode codes 0..7 too): the program of a build must ignore what the build lacks, and give the zero
+vector and err for a mode it lacks (calc_prog.expect). Every run starts from junk machine state (registers,
 flags, the RAM's working words), as the RTL does after an earlier or aborted computation.
 """
 from __future__ import annotations
@@ -14,10 +16,13 @@ import random
 import pytest
 
 from svpwm_model import calc_prog as cp
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 
-PROGRAMS = [(False, True), (True, False), (False, False)]      # (compact, dsp)
-IDS = ["full-dsp", "compact-serial", "full-serial"]
+PROGRAMS = {**config.CONFIGS, "full-serial": config.FULL & ~config.mask("dsp")}
+IDS = list(PROGRAMS)
+FEATS = list(PROGRAMS.values())
+ENGINE = [f for f in FEATS if f != config.TINY]                # the programs that read the mode
+ENGINE_IDS = [n for n, f in PROGRAMS.items() if f != config.TINY]
 M_VERTEX = int(round(2 / math.sqrt(3) * fixed.M_ONE))          # 0x93CD, the hexagon's vertex
 PERIODS = (8, 48, 100, 1536, 4095, 65535)
 ANGLES = (0, 1, 0x7FFF, 0x8000, 0x8001, 0xFFFE, 0xFFFF)
@@ -29,12 +34,12 @@ def _thrs(P: int) -> tuple[int, ...]:
     return tuple(sorted({0, 1, 2, 5, min(P // 2, 2047), min(P // 2 - 1, 2047) if P > 2 else 0}))
 
 
-def _vec(rng: random.Random, compact: bool) -> dict:
+def _vec(rng: random.Random, features: int) -> dict:
     P = rng.choice(PERIODS + (rng.randint(8, 65535),) * 4)
     thr = min(rng.choice([0, 1, 2, 5, rng.randint(0, P // 2), P // 2]), P // 2, 2047)
     d = dict(period=P, thr=thr, sector=rng.randint(0, 5), a16=rng.choice(ANGLES + (rng.randint(0, 65535),) * 3),
              m=rng.choice(MS + (rng.randint(0, 65535),) * 3))
-    if not compact:
+    if features != config.TINY:
         f = rng.randint(-(1 << (fixed.FREQ_WIDTH - 1)) + 1, (1 << (fixed.FREQ_WIDTH - 1)) - 1)
         d.update(mode=rng.choice(range(8)), freq=f, fabs=abs(f) >> (fixed.FREQ_WIDTH - 17),
                  theta=rng.randint(0, 65535), v1=rng.choice(VS + (rng.randint(-32768, 32767),) * 3),
@@ -51,7 +56,7 @@ def _vec(rng: random.Random, compact: bool) -> dict:
     return d
 
 
-def _directed(compact: bool):
+def _directed(features: int):
     """Corners: every sector x angle x m x (P, thr) corner in FREQ mode; for the full program every mode x DPWM
     setting with corner references (AB / DQ components, theta at the sector ends, V/f saturating)."""
     for sector in range(6):
@@ -60,7 +65,7 @@ def _directed(compact: bool):
                 for P in (48, 65535):
                     for thr in _thrs(P)[::2]:
                         yield dict(period=P, thr=thr, sector=sector, a16=a16, m=m)
-    if compact:
+    if features == config.TINY:
         return
     for mode in range(8):
         for dpwm in range(4):
@@ -91,35 +96,50 @@ def _directed(compact: bool):
                         yield dict(period=1536, thr=thr, sector=sector, a16=0x3000, m=m, dpwm=dpwm,
                                    isign=isign, hdr=hdr, hdf=hdf, carry=(isign - 3, -(thr + 1) // 2, thr // 2))
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
-def test_directed(compact, dsp):
-    mach = cp.Machine(cp.program(compact, dsp))
+def _slow(features: int) -> bool:
+    """An engine program on the serial unit (several hundred clocks a run): fewer vectors."""
+    return not config.has(features, "dsp") and features != config.TINY
+
+
+@pytest.mark.parametrize("features", FEATS, ids=IDS)
+def test_directed(features):
+    mach = cp.Machine(cp.program(features))
     junk = random.Random(1)
-    every = 4 if dsp == compact else 1                         # full program on the serial unit: every 4th
+    every = 4 if _slow(features) else 1                        # full program on the serial unit: every 4th
     n = 0
-    for k, v in enumerate(_directed(compact)):
+    for k, v in enumerate(_directed(features)):
         if k % every == 0:
-            assert mach.run(v, junk=junk) == cp.expect(v, compact), v
-            assert mach.e_out == cp.expect_carry(v, compact)[4], v
+            assert mach.run(v, junk=junk) == cp.expect(v, features), v
+            assert mach.e_out == cp.expect_carry(v, features)[4], v
             n += 1
     assert n >= 1000
 
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
-def test_random(compact, dsp):
-    mach = cp.Machine(cp.program(compact, dsp))
-    rng = random.Random(2024 + 7 * compact + dsp)
-    for _ in range(3000 if dsp != compact else 1000):
-        v = _vec(rng, compact)
-        assert mach.run(v, junk=rng) == cp.expect(v, compact), v
-        assert mach.e_out == cp.expect_carry(v, compact)[4], v
+@pytest.mark.parametrize("features", FEATS, ids=IDS)
+def test_random(features):
+    mach = cp.Machine(cp.program(features))
+    rng = random.Random(2024 + features)
+    for _ in range(1000 if _slow(features) else 3000):
+        v = _vec(rng, features)
+        assert mach.run(v, junk=rng) == cp.expect(v, features), v
+        assert mach.e_out == cp.expect_carry(v, features)[4], v
 
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
-def test_words(compact, dsp):
+def test_missing_features_change_results():
+    """Not vacuous: for each feature of the calculator a vector whose result in the full build differs from
+    that of a build without it (so test_random compares builds that really differ)."""
+    rng = random.Random(5)
+    vecs = [_vec(rng, config.FULL) for _ in range(3000)]
+    for name in ("freq", "vf", "polar", "ab", "dq", "dpwm", "sixstep", "dtc", "carry"):
+        lacking = config.FULL & ~config.mask(name)
+        assert any(cp.expect_carry(v, config.FULL) != cp.expect_carry(v, lacking) for v in vecs), name
+
+
+@pytest.mark.parametrize("features", FEATS, ids=IDS)
+def test_words(features):
     """The packed word decodes to the logical fields the program was built with; it fits three 16-bit block
     RAM words; the shipped programs are at most 256 words deep; the latency bounds of the issue (MinPeriod <= 256)."""
-    prog = cp.program(compact, dsp)
+    prog = cp.program(features)
     assert cp.WORD_BITS <= 48
     names = [n for n, _ in cp.LOGICAL]
     for k, (w, word) in enumerate(zip(prog.words(), prog.encode())):
@@ -130,19 +150,19 @@ def test_words(compact, dsp):
             if n in shared and not w.get(shared[n]):
                 continue                                       # a shared field's bits belong to the other use
             assert got[n] == w.get(n, 0), (k, n)
-    assert len(prog.steps) <= (512 if dsp == compact else 256)   # the shipped programs: one 256-word depth
-    if dsp:
-        assert cp.calc_latency(compact, dsp) + 1 + 4 <= 256
+    assert len(prog.steps) <= (512 if _slow(features) else 256)   # the shipped programs: one 256-word depth
+    if config.has(features, "dsp"):
+        assert cp.calc_latency(features) + 1 + 4 <= 256
 
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
-def test_idle_word_and_fabs(compact, dsp):
+@pytest.mark.parametrize("features", FEATS, ids=IDS)
+def test_idle_word_and_fabs(features):
     """Word 0 is the idle word: no own fields (the ROM reads it whenever the machine is idle). The |f|, period
     and threshold inputs (fabs_i, period_i, thr_i) are read at step 1 at the earliest (the input register of
     the operand of step k loads in clock k - 2): svpwm_core registers them in the start clock (|f| one clock
     after the frequency word it samples with the reference), i.e. they are valid from the calculator's step 1
     on. Step 1 has no operand (it would come from the word before the start)."""
-    prog = cp.program(compact, dsp)
+    prog = cp.program(features)
     w0 = cp.decode(prog.encode()[0])
     assert all(w0[n] == 0 for n, _ in cp.OWN_FIELDS), w0
     late = (cp.IN_FABS, cp.IN_PERIOD, cp.IN_THR)
@@ -150,39 +170,40 @@ def test_idle_word_and_fabs(compact, dsp):
     assert reads and all(k - 2 >= 1 for k in reads), reads   # the input of step k is taken in clock k - 2
 
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS, ids=IDS)
-def test_mb_acc_unused(compact, dsp):
+@pytest.mark.parametrize("features", FEATS, ids=IDS)
+def test_mb_acc_unused(features):
     """No step loads MB with the ACC selection (mlb with mbs = MB_ACC, mop codes 5, 9, 10 of the table): the
     program multiplies ACC only as MA. svpwm_calc's MbAcc branch of mb_d is therefore never loaded, which is
     why scripts/mutate_equivalent.json lists mutants of that branch as equivalent; a generator change that
     uses it makes this test fail (and those mutants must then be killed, not listed)."""
-    words = [cp.decode(x) for x in cp.program(compact, dsp).encode()]
+    words = [cp.decode(x) for x in cp.program(features).encode()]
     used = [k for k, g in enumerate(words) if g["mlb"] and g["mbs"] == cp.MB_ACC]
     assert not used, f"words {used} load MB from ACC"
     assert any(g["mlb"] for g in words)                        # (the decode sees the loads at all)
 
 
-@pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
-def test_idle_word_equals_word_1(dsp):
-    """The engine's programs (Compact = 0) have the same packed word at addresses 0 (the idle word) and 1 (step
+@pytest.mark.parametrize("features", [config.FULL, PROGRAMS["full-serial"]], ids=["full", "full-serial"])
+def test_idle_word_equals_word_1(features):
+    """The full programs (the build `make mutate` runs: it holds for foc and minimal too, not for vf, whose
+    first step waits for fabs_i) have the same packed word at addresses 0 (the idle word) and 1 (step
     1: empty, its next fields are step 1's selections too). svpwm_calc's step counter then may idle at 0 or 1
     without a difference, which is why scripts/mutate_equivalent.json lists the mutants that make pc_d 1
     when idle or after an abort as equivalent; a generator change that makes the two words differ fails this
     test (and those mutants must then be killed, not listed)."""
-    words = cp.program(False, dsp).encode()
+    words = cp.program(features).encode()
     assert words[0] == words[1], (hex(words[0]), hex(words[1]))
     assert len(set(words)) > 10                                # (the program is not all one word)
 
 
-@pytest.mark.parametrize("dsp", (True, False), ids=("full-dsp", "full-serial"))
-def test_input_operand_codes(dsp):
+@pytest.mark.parametrize("features", ENGINE, ids=ENGINE_IDS)
+def test_input_operand_codes(features):
     """Every word of the engine's programs (Compact = 0) whose operand is an input (src = AS_IN) has an input
     code 0..13: svpwm_calc's `default` of in_sel (the operand field of a word whose B is a RAM word or a
     product shift) only reaches in_q when the next step does not read it, which is why
     scripts/mutate_equivalent.json lists the mutant of that default as equivalent; a generator change that
     breaks this fails here (and that mutant must then be killed, not listed)."""
     fp = cp.field_pos()
-    words = cp.program(False, dsp).encode()
+    words = cp.program(features).encode()
 
     def f(w, name):
         return (w >> fp[name][0]) & ((1 << fp[name][1]) - 1)
@@ -202,22 +223,22 @@ def test_misuse_is_refused():
         cp.pack(dict(asrc=cp.AS_IN, isel=1, ra=5))
     # step 1 has no operand; step 2 no condition (its condition bits would be computed in the start clock)
     with pytest.raises(AssertionError):
-        cp.Program(False, True, [{}, cp.ram(8), {}]).words()
+        cp.Program(config.FULL, False, [{}, cp.ram(8), {}]).words()
     with pytest.raises(AssertionError):
-        cp.Program(False, True, [{}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF), {}]).words()
+        cp.Program(config.FULL, False, [{}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF), {}]).words()
     with pytest.raises(AssertionError):
-        cp.Program(False, True, [{}, {}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF, binv=cp.BINV_C, bci=cp.F_VF)]).words()
+        cp.Program(config.FULL, False, [{}, {}, {}, cp.ram(8, rc=cp.RC_C, ci=cp.F_VF, binv=cp.BINV_C, bci=cp.F_VF)]).words()
 
 
-@pytest.mark.parametrize("compact,dsp", PROGRAMS[:2], ids=IDS[:2])
-def test_random_cnt12(compact, dsp):
+@pytest.mark.parametrize("features", [config.FULL, config.TINY], ids=["full", "tiny"])
+def test_random_cnt12(features):
     """CntWidth 12: the machine's width is the same (acc_width: every product and the V/f candidate need 26
     bits whatever the compare width), the compare values 12 bits."""
     assert cp.acc_width(12) == cp.acc_width(16)
-    mach = cp.Machine(cp.program(compact, dsp), cnt_width=12)
+    mach = cp.Machine(cp.program(features), cnt_width=12)
     rng = random.Random(12)
     for _ in range(1000):
-        v = _vec(rng, compact)
+        v = _vec(rng, features)
         v["period"] = min(v["period"], (1 << 12) - 1)
         v["thr"] = min(v["thr"], v["period"] // 2)
-        assert mach.run(v, junk=rng) == cp.expect(v, compact), v
+        assert mach.run(v, junk=rng) == cp.expect(v, features), v

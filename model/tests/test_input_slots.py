@@ -10,7 +10,7 @@ import random
 import pytest
 
 from svpwm_model import calc_prog as cp
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 
 REF = ("m", "theta", "v1", "v2", "vf_boost", "vf_slope", "vf_mmax")
 VS = (-32768, -32767, -1, 0, 1, 0x3FFF, 0x4000, 32767)
@@ -55,7 +55,7 @@ def test_slots_differ_from_inputs():
 @pytest.mark.parametrize("mode", range(8))
 def test_slots_on_the_machine(mode):
     """The full program on the machine model with the slot view == the specification on the inputs."""
-    mach = cp.Machine(cp.program(False, True))
+    mach = cp.Machine(cp.program(config.FULL))
     rng, junk = random.Random(7 + mode), random.Random(8)
     for _ in range(150):
         ref = _ref(rng)

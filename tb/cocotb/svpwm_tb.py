@@ -20,7 +20,7 @@ from clocks import clock_cycles
 from pathlib import Path
 
 from simrun import rtl_sources, run_sim
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 from svpwm_model.analysis import check_legs, check_table_i
 from svpwm_model.core import CoreModel, Inputs, Run
 
@@ -68,14 +68,20 @@ def _diff(name: str, got: list, exp: list) -> str:
 class CoreTB:
     def __init__(self, dut):
         self.dut = dut
-        self.compact = os.environ.get("SVPWM_COMPACT") == "1"    # harness built with Compact = 1
-        self.model = CoreModel(compact=self.compact)
+        # the build of the harness (svpwm_core Features, config.py; run_core_sim sets SVPWM_FEATURES)
+        self.features = int(os.environ.get("SVPWM_FEATURES", str(config.FULL)))
+        self.compact = self.features == config.TINY
+        self.model = CoreModel(features=self.features)
         self.cmp_width = len(dut.period_o)
         self.rec = None                     # the harness' record file (see run())
         # what the ports get instead of the model's inputs (None: the same); e.g. another dead time on
         # dt_i while lock_i holds the locked one (the model keeps the locked value)
         self.port_inputs: Callable[[Inputs], Inputs] | None = None
         self.t0 = 0
+
+    def has(self, name: str) -> bool:
+        """The harness's build has feature ``name`` (config.FEATURES)."""
+        return config.has(self.features, name)
 
     def set_inputs(self, u: Inputs) -> None:
         d = self.dut
@@ -126,7 +132,7 @@ class CoreTB:
         await clock_cycles(d.clk, 3)
         d.rst_ni.value = 1
         await clock_cycles(d.clk, fixed.ARM_CLOCKS)   # the core runs ARM_CLOCKS after the reset release at the earliest
-        self.model = CoreModel(compact=self.compact)
+        self.model = CoreModel(features=self.features)
         self.idle_cycles = fixed.ARM_CLOCKS + 2       # clocks from reset release to cycle 0 of run() (en_i low)
         self.t_idle = get_sim_time("ns")              # ... if run() is called now (later: more idle clocks)
 
@@ -355,19 +361,35 @@ def _squash(ev: list[tuple[int, int]], initial: int = 0) -> list[tuple[int, int]
 # ---- the builds of tb_svpwm_core (tb/cocotb/svpwm_core/tb_svpwm_core.sv) that the core, safety, modes and
 # stress tests share: one simulator model per build name (simrun.run_sim makes each once per simulator)
 CORE_HARNESS = Path(__file__).parent / "svpwm_core" / "tb_svpwm_core.sv"
+# (default: the full core; compact: the tiny configuration; foc, vf, minimal: the named configurations)
 CORE_BUILDS: dict[str, dict] = {
     "default": {},
-    "compact": {"parameters": {"Compact": 1, "MinPeriod": fixed.LITE_MIN_PERIOD},
-                "extra_env": {"SVPWM_COMPACT": "1"}},
+    "compact": {"features": config.TINY},
     "freq16": {"parameters": {"FreqWidth": 16, "PhaseWidth": 26}},   # the narrow frequency word
+    **{n: {"features": config.CONFIGS[n]} for n in ("foc", "vf", "minimal")},
 }
+
+
+def build_features(build: str) -> int:
+    return CORE_BUILDS[build].get("features", config.FULL)
+
+
+def core_items(needs: dict[str, tuple[str, ...]], builds: Sequence[str]) -> list[tuple[str, str]]:
+    """(build, case) for every cocotb case and every build of ``builds`` that has the features the case
+    needs (needs[case]: config.FEATURES names): each test runs on the builds that have what it tests."""
+    return [(b, c) for b in builds for c, need in needs.items()
+            if all(config.has(build_features(b), n) for n in need)]
 
 
 def run_core_sim(sim: str, test_module: str, test_dir: Path, build: str = "default", testcase=None,
                  record: bool = True, extra_env: dict | None = None) -> None:
     """Run cocotb tests of ``test_module`` on tb_svpwm_core built as ``build`` (CORE_BUILDS)."""
     cfg = CORE_BUILDS[build]
+    feats = build_features(build)
+    params = dict(cfg.get("parameters", {}))
+    if feats != config.FULL:
+        params["Features"] = feats
     run_sim(sim, toplevel="tb_svpwm_core", sources=rtl_sources() + [CORE_HARNESS], test_module=test_module,
-            test_dir=test_dir, build_name=build, parameters=cfg.get("parameters", {}),
-            extra_env={**cfg.get("extra_env", {}), **(extra_env or {})}, testcase=testcase, record=record,
+            test_dir=test_dir, build_name=build, parameters=params,
+            extra_env={"SVPWM_FEATURES": str(feats), **(extra_env or {})}, testcase=testcase, record=record,
             vpi_top_only=True)

@@ -8,13 +8,13 @@
 `default_nettype none
 
 module svpwm_bench_top #(
-  parameter bit Compact    = 1'b0,             // svpwm_core's compact variant (its unused inputs stay in
-                                               // the shift register, so wrapper_lc is the same)
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,   // svpwm_core's build (the inputs it does not
+                                               // read stay in the shift register: wrapper_lc is the same)
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = svpwm_pkg::min_period(Compact)
+  parameter int MinPeriod  = svpwm_pkg::min_period(Features)
 ) (
   input  wire        clk_i,
   input  wire        rst_ni,
@@ -41,7 +41,7 @@ module svpwm_bench_top #(
   end
 
   svpwm_core #(
-    .Compact    (Compact),
+    .Features   (Features),
     .CntWidth   (CntWidth),
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),

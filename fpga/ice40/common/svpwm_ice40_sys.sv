@@ -29,7 +29,8 @@ module svpwm_ice40_sys #(
   parameter int         ClkHz       = 48_000_000,                   // core clock in Hz
   parameter int         ClksPerBit  = (ClkHz + 115_200 / 2) / 115_200,  // 115200 baud, rounded
   parameter int         TimeoutBits = 1000,                         // inter-byte timeout, bit times
-  parameter int         MinPeriod   = svpwm_pkg::min_period(Compact), // svpwm_core MinPeriod (its default)
+  parameter int         MinPeriod   = svpwm_pkg::min_period(Compact ? svpwm_pkg::CfgTiny
+                                                                    : svpwm_pkg::CfgFull),
   parameter int         FreqMax     = (1 << 23) - 1,                // svpwm_core FreqMax (FreqWidth 24)
   parameter logic [1:0] GatePol     = 2'b00,                        // svpwm_core GatePol, CTRL.pol reset
   parameter int         CntWidth    = Compact ? 12 : 16             // carrier / period width (mmio)

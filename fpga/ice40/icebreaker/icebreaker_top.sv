@@ -23,7 +23,7 @@ module icebreaker_top #(
   parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
-  parameter int         MinPeriod      = svpwm_pkg::min_period(0),
+  parameter int         MinPeriod      = svpwm_pkg::min_period(svpwm_pkg::CfgFull),
   parameter int         FreqMax        = (1 << 23) - 1,
   parameter logic [1:0] GatePol        = 2'b00
 ) (

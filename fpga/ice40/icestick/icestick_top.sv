@@ -12,7 +12,7 @@
 //                 one place to change it (nextpnr derives the clock constraint from the PLL settings
 //                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
 //   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol); MinPeriod >= the
-//                 compact core's SampleLead + 4 (svpwm_pkg::min_period(1), the default)
+//                 compact core's SampleLead + 4 (svpwm_pkg::min_period(svpwm_pkg::CfgTiny), the default)
 // Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The full core does not
 // fit the HX1K's 1280 logic cells; this compact system does (fpga/ice40/README.md has the figures).
 `default_nettype none
@@ -28,7 +28,7 @@ module icestick_top #(
   parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
-  parameter int         MinPeriod      = svpwm_pkg::min_period(1),
+  parameter int         MinPeriod      = svpwm_pkg::min_period(svpwm_pkg::CfgTiny),
   parameter int         FreqMax        = (1 << 23) - 1,
   parameter logic [1:0] GatePol        = 2'b00
 ) (

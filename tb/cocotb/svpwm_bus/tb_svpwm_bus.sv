@@ -8,7 +8,7 @@
 module tb_svpwm_bus #(
   parameter int Bus       = 0,
   parameter int AddrWidth = 8,
-  parameter int MinPeriod = svpwm_pkg::min_period(1'b0),
+  parameter int MinPeriod = svpwm_pkg::min_period(svpwm_pkg::CfgFull),
   parameter int ClkHz     = 0,
   parameter int CntWidth  = 16
 ) (

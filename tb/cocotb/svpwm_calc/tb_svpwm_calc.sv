@@ -40,8 +40,7 @@
 `default_nettype none
 
 module tb_svpwm_calc #(
-  parameter bit Compact  = 1'b0,
-  parameter bit Dsp      = svpwm_pkg::core_dsp(Compact),   // 0: the serial multiplier (no core builds it)
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,   // the build (its Dsp bit 0: the serial unit)
   parameter int CntWidth = 16,
   parameter int DtWidth  = 10,
   parameter int MaxVec   = 65600              // player: records per run
@@ -91,6 +90,9 @@ module tb_svpwm_calc #(
   output logic [3*DtWidth+5:0]  fail_car_o    // player: carry_o then
 );
 
+  // the tiny build (TRANSITIONAL: the compact core's own datapath, which reads thr_i with start_i)
+  localparam bit Compact = svpwm_pkg::is_tiny(Features);
+
   localparam int EW        = DtWidth + 2;    // carry per phase, signed
   localparam int HeldWidth = 3 + 16 * 8 + 2 + CntWidth + 3 + 2 * DtWidth + 1 + 3 * EW + 1;   // (thr_i apart)
 
@@ -138,7 +140,7 @@ module tb_svpwm_calc #(
     assign carry[ph*EW +: EW] = playing ? p_pins[232 + 16 * ph +: EW] : carry_i[ph*EW +: EW];
   end
 
-  svpwm_calc #(.Compact(Compact), .Dsp(Dsp), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
+  svpwm_calc #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_dut (
     .clk_i      (clk),
     .rst_ni     (rst_ni),
     .start_i    (start),

@@ -123,7 +123,7 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
 * `serial_vectors` (build full_serial only: Compact = 0 with Dsp = 0, the serial multiplier no core builds):
   every CALC_SERIAL_STRIDE-th vector of every directed set (`directed_dtc`: every 4 x CALC_SERIAL_STRIDE-th,
   SERIAL_THIN) + CALC_SERIAL_NRAND random vectors; LATENCY is then the full program's length on the serial
-  unit (calc_prog.calc_latency(False, False)).
+  unit (calc_prog.calc_latency(FULL without dsp)).
 
 Builds: Compact 0 / 1 x CntWidth 16 / 12 (DtWidth 10), and full_serial (Dsp = 0, CntWidth 16: the groups
 `serial` only; its random part includes aborted computations); pytest items: build x scenario group x
@@ -145,15 +145,16 @@ import pytest
 from cocotb.triggers import FallingEdge, Timer
 
 from simrun import REPO, rtl_sources, run_sim
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 from svpwm_model.calc_prog import calc_latency, expect_carry as calc_expect
 
 # the simulator process learns its variant from the pytest item (extra_env); the pytest process does not need it
 COMPACT = os.environ.get("SVPWM_CALC_COMPACT", "0") == "1"
 SERIAL = os.environ.get("SVPWM_CALC_DSP", "") == "0"      # Compact = 0 on the serial multiplier (Dsp = 0)
+FEATURES = int(os.environ.get("SVPWM_CALC_FEATURES", str(config.FULL)))   # the build (svpwm_calc Features)
 # clocks from start_i (cycle c) to done_o (cycle c + LATENCY): the one place the test states it (the serial
-# build: the length of the full program on the serial unit, calc_prog.calc_latency(False, False))
-LATENCY = calc_latency(False, False) if SERIAL else {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
+# build: the length of the full program on the serial unit, calc_prog.calc_latency(its features))
+LATENCY = calc_latency(FEATURES) if SERIAL else {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
 
 CLK_NS = 10                  # the harness's clock period
 # player records (tb_svpwm_calc.sv: the vector player): an input set, the control word's fields (offset, width)
@@ -241,7 +242,7 @@ class CalcTB:
                    fabs=fabs(v.freq), theta=v.theta, v1=v.v1, v2=v.v2, vf_boost=v.boost, vf_slope=v.slope,
                    vf_mmax=v.mmax, dpwm=v.dpwm, isign=v.isign, hdr=v.hdr, hdf=v.hdf, om=v.om,
                    carry=v.carry if v.carry_en else (0, 0, 0))
-        sec, c, sat, err, e = calc_expect(inp, COMPACT)
+        sec, c, sat, err, e = calc_expect(inp, FEATURES)
         if COMPACT:
             e = (0, 0, 0)                                   # the compact build drives carry_o to 0
         hthr = (v.thr + 1) >> 1
@@ -894,11 +895,12 @@ async def abort(dut):
 # one directory per item.
 
 BUILDS = {
-    "full_cnt16":    {"Compact": 0, "CntWidth": 16, "DtWidth": 10},
-    "full_cnt12":    {"Compact": 0, "CntWidth": 12, "DtWidth": 10},
-    "full_serial":   {"Compact": 0, "Dsp": 0, "CntWidth": 16, "DtWidth": 10},
-    "compact_cnt16": {"Compact": 1, "CntWidth": 16, "DtWidth": 10},
-    "compact_cnt12": {"Compact": 1, "CntWidth": 12, "DtWidth": 10},
+    "full_cnt16":    {"Compact": 0, "Features": config.FULL, "CntWidth": 16, "DtWidth": 10},
+    "full_cnt12":    {"Compact": 0, "Features": config.FULL, "CntWidth": 12, "DtWidth": 10},
+    "full_serial":   {"Compact": 0, "Dsp": 0, "Features": config.FULL & ~config.mask("dsp"), "CntWidth": 16,
+                      "DtWidth": 10},
+    "compact_cnt16": {"Compact": 1, "Features": config.TINY, "CntWidth": 16, "DtWidth": 10},
+    "compact_cnt12": {"Compact": 1, "Features": config.TINY, "CntWidth": 12, "DtWidth": 10},
 }
 SCENARIOS = {
     "directed":  ["directed_freq", "directed_corners", "directed_dtc", "directed_carry"],
@@ -919,7 +921,9 @@ ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Compact"] 
 def test_svpwm_calc(sim, build, scenario):
     here = Path(__file__).parent
     run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
-            test_module="test_svpwm_calc", test_dir=here, parameters=BUILDS[build],
+            test_module="test_svpwm_calc", test_dir=here,
+            parameters={k: v for k, v in BUILDS[build].items() if k not in ("Compact", "Dsp")},
             build_name=build if sim == "verilator" else f"{build}-{scenario}", testcase=SCENARIOS[scenario],
-            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", "")},
+            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", ""),
+                       "SVPWM_CALC_FEATURES": str(BUILDS[build]["Features"])},
             vpi_top_only=True)

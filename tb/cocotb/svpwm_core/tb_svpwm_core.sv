@@ -9,12 +9,12 @@
 `default_nettype none
 
 module tb_svpwm_core #(
-  parameter bit Compact    = 1'b0,
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,
   parameter int CntWidth   = 16,
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
   parameter int DtWidth    = 10,
-  parameter int MinPeriod  = svpwm_pkg::min_period(Compact),
+  parameter int MinPeriod  = svpwm_pkg::min_period(Features),
   parameter logic [1:0] GatePol = 2'b00
 ) (
   input  logic                        rst_ni,
@@ -88,7 +88,7 @@ module tb_svpwm_core #(
   always #5 clk = ~clk;
 
   svpwm_core #(
-    .Compact    (Compact),
+    .Features   (Features),
     .CntWidth   (CntWidth),
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),

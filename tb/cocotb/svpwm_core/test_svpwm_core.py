@@ -12,9 +12,11 @@ the same revolutions / transitions with fewer clocks (Fig. 10: P = 256 at 6x the
 315 periods per revolution; other points: a higher frequency, i.e. fewer carrier periods per revolution,
 or fewer periods per step), bit-exact like every run; Verilator runs them in full (ICARUS below).
 
-Two builds: the full core and the compact variant (Compact = 1, the iCEstick's HX1K: FREQ mode, SVPWM,
-valley updates, one serial calculator with a longer lead). Both run every test against the golden model
-(CoreModel(compact=...)); `full_only_inputs` checks that the compact core ignores what it does not have.
+Builds (svpwm_core Features, model/svpwm_model/config.py): the full core, vf, and the tiny one (the compact
+variant: the iCEstick's HX1K, FREQ mode, SVPWM, valley updates, one serial calculator with a longer lead) run
+every test against the golden model (CoreModel(features=...)); foc and minimal (no FREQ mode) run
+`full_only_inputs`, which checks that a build ignores what it does not have (their modes:
+tb/cocotb/svpwm_modes).
 """
 from __future__ import annotations
 
@@ -32,7 +34,7 @@ from simrun import cocotb_tests
 from svpwm_model import fixed
 from svpwm_model.analysis import duty_error, line_fundamental
 from svpwm_model.core import CoreModel, Inputs
-from svpwm_tb import CLK_NS, CoreTB, run_core_sim
+from svpwm_tb import CLK_NS, CoreTB, core_items, run_core_sim
 from clocks import clock_cycles
 
 F_CLK = fixed.F_CLK_DEFAULT
@@ -181,7 +183,7 @@ async def asymmetric_dead_time(dut):
     sched = [Inputs(FW(400.0), MW(0.9), **(dict(period=P, presc=3) | st)) for st in steps for _ in range(n_each)]
     await tb.reset(sched[0])
     rtl, exp = await check_run(tb, sched[0], sched, len(sched))
-    if not tb.compact:
+    if tb.has("dtf"):
         assert sum(a != b for a, b in zip(exp.dt, exp.dtf)) > len(sched) // 2, "dt != dtf in too few periods"
         k = next(i for i, u in enumerate(sched) if u.dtf == 150)
         assert exp.period[k + 1] == 2 * (150 + 0), f"period {exp.period[k + 1]}: not raised for dtf 150"
@@ -191,12 +193,12 @@ async def asymmetric_dead_time(dut):
             if (a.dt, a.mp, a.period) == (b.dt, b.mp, b.period) and a.dtf != b.dtf:
                 assert exp.valley[i + 1] in {u.load for u in exp.updates}, f"no forced update at valley {i + 1}"
     else:
-        assert exp.dtf == exp.dt, "compact model: one dead time"
-    sym = CoreModel(compact=tb.compact)
+        assert exp.dtf == exp.dt, "a build without DTF: one dead time"
+    sym = CoreModel(features=tb.features)
     sym.idle(fixed.ARM_CLOCKS + 2)
     ref = sym.run(replace(sched[0], dtf=None), [replace(u, dtf=None) for u in sched], len(sched))
-    if tb.compact:
-        assert ref.gate_edges == exp.gate_edges, "compact: dtf changed the gates"
+    if not tb.has("dtf"):
+        assert ref.gate_edges == exp.gate_edges, "no DTF: dtf changed the gates"
     else:
         assert ref.gate_edges != exp.gate_edges, "asymmetric dead times gave the symmetric gates"
 
@@ -252,21 +254,29 @@ async def reset_mid_run(dut):
 
 @cocotb.test()
 async def full_only_inputs(dut):
-    """POLAR mode, DPWM1, double update, prescaler 1: the full core follows them, the compact core ignores
-    them (FREQ mode, SVPWM, an update at every valley); exact against the model in both builds."""
+    """POLAR mode, DPWM1, double update, prescaler 1: a build follows those it has and ignores the others
+    (SVPWM, an update at every valley; POLAR not built: the zero vector and cfg_err_o; the tiny core: FREQ
+    mode); exact against the model in every build."""
     tb = CoreTB(dut)
     u = Inputs(freq=FW(400.0), m=MW(0.7), period=P_VERMA // 2, dt=24, mode=fixed.MODE_POLAR, theta=0x2345,
                dpwm=fixed.DPWM_60, upd=fixed.UPD_BOTH, presc=1)
     await tb.reset(u)
     rtl, exp = await tb.run(u, const(u), 40)
     tb.compare(rtl, exp)
-    tb.check_edges(rtl, exp, table_i=tb.compact)      # Table I: single-update SVPWM only
+    # Table I: single-update SVPWM only
+    tb.check_edges(rtl, exp, table_i=not tb.has("upd") and not tb.has("dpwm"))
     peak_updates = sum(x.at_peak for x in exp.updates)
-    if tb.compact:
-        assert peak_updates == 0 and len(exp.updates) == 40, "compact: one update per valley, none at a peak"
-        assert len(set(rtl.sector[1:])) > 1, "compact: the phase accumulator turns the vector (FREQ mode)"
+    if tb.has("upd"):
+        assert peak_updates > 0, "UPD: peak updates"
     else:
-        assert peak_updates > 0 and len(set(rtl.sector[1:])) == 1, "full: POLAR at a fixed angle, peak updates"
+        assert peak_updates == 0 and len(exp.updates) == 40, "no UPD: one update per valley, none at a peak"
+    if tb.compact:
+        assert len(set(rtl.sector[1:])) > 1, "tiny: the phase accumulator turns the vector (FREQ mode)"
+    elif tb.has("polar"):
+        assert len(set(rtl.sector[1:])) == 1 and not any(exp.err), "POLAR at a fixed angle"
+    else:
+        assert all(exp.err[1:]) and int(dut.cfg_err_o.value) == 1, "POLAR not built: cfg_err_o"
+        assert all(len(set(c)) == 1 for c in rtl.cmp[1:]), "POLAR not built: the zero vector"
 
 
 # the outputs that are 0 in reset (a valid configuration, en_i high): every status output and the gates
@@ -326,14 +336,16 @@ async def config_and_safety(dut):
     await tb.reset(vf)
     rtl, exp = await tb.run(vf, const(vf), 12)
     tb.compare(rtl, exp)
-    tb.check_edges(rtl, exp, table_i=tb.compact)
+    tb.check_edges(rtl, exp, table_i=not tb.has("upd"))
     fa = abs(vf.freq) >> (fixed.FREQ_WIDTH - 17)
-    if not tb.compact:
+    if tb.has("vf"):
         m_vf = fixed.vf_m(vf.freq, vf.vf_boost, vf.vf_slope, vf.vf_mmax)
         assert m_vf == vf.vf_boost + fa < vf.vf_mmax and {u.m for u in exp.updates} == {m_vf}, \
             "the V/f point is on the linear part of the law"
-        gaps = {b.load - a.load for a, b in zip(exp.updates, exp.updates[1:])}
-        assert gaps == {3 * P}, f"prescaler 2, both points: an update every third half period, gaps {gaps}"
+    gaps = {b.load - a.load for a, b in zip(exp.updates, exp.updates[1:])}
+    # prescaler 2 at both points: every third half period; without UPD / PRESC every valley (2 P)
+    want = (3 if tb.has("presc") else 1) * (1 if tb.has("upd") else 2) * P
+    assert gaps == {want}, f"prescaler 2, both points: an update every {want} clocks, gaps {gaps}"
     # ---- ADC triggers (the core runs on with the last inputs)
     for code in (1, 2, 3):
         dut.adc_trig_i.value = code
@@ -384,7 +396,7 @@ async def config_and_safety(dut):
     # from the clock after it (the high sides' turn-off there): low sides on from the (3 + dtf)-th edge
     # after the fault, held through valleys until fault_clear_i, and back to the modulator after it
     brk = Inputs(freq=FW(500.0), m=MW(0.3), period=P, dt=7, dtf=12)
-    dtf = brk.dt if tb.compact else brk.dtf
+    dtf = brk.dtf if tb.has("dtf") else brk.dt
     await tb.reset(brk)
     tb.set_safety(safe_lo=1)
     rtl, exp = await tb.run(brk, const(brk), 2)
@@ -559,7 +571,7 @@ async def dtc_sign_changes(dut):
     task.cancel()
     tb.compare(rtl, exp)
     tb.check_edges(rtl, exp, table_i=False)                          # (double update: no single pattern)
-    if not tb.compact:
+    if tb.has("dtc"):
         comp = [x for x in exp.updates if x.cmp != fixed.modulate(
             fixed.MODE_FREQ, x.theta >> fixed.PHASE_WIDTH,
             (x.theta & ((1 << fixed.PHASE_WIDTH) - 1)) >> (fixed.PHASE_WIDTH - fixed.ANGLE_BITS), x.period,
@@ -594,7 +606,7 @@ async def volt_second_carry(dut):
     rtl2, exp2 = await tb.run(u2, const(u2), 12)
     tb.compare(rtl2, exp2)
     tb.check_edges(rtl2, exp2, table_i=False)
-    if tb.compact:
+    if not tb.has("carry"):
         return
     assert any(exp.updates[-1].carry) and exp2.updates[0].period == exp.updates[-1].period, \
         "the stop held no carry to clear"
@@ -626,8 +638,8 @@ async def carry_cleared_by_trip(dut):
         got = await tb.per_clock(P)
         if got[-1].carry:
             break
-    if tb.compact:
-        assert not any(k.carry for k in got), "compact core: a carry"
+    if not tb.has("carry"):
+        assert not any(k.carry for k in got), "a build without CARRY: a carry"
         return
     held = got[-1].carry
     assert held, "no update with a carry in 12 half periods"
@@ -644,21 +656,18 @@ async def carry_cleared_by_trip(dut):
     assert any(k.carry for k in got[rel:]), "no carry after the release"
     assert int(dut.trip_violations_o.value) == 0
 
-# ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; the two
-# builds (full, compact) are made once per simulator and shared by their items (svpwm_tb.run_core_sim, CORE_BUILDS).
+# ---- pytest items: one per cocotb test and build, so that both pytest-xdist workers stay busy; each build is
+# made once per simulator and shared by its items (svpwm_tb.run_core_sim, CORE_BUILDS). A test runs on the
+# builds that have what it drives (svpwm_tb.core_items): the operating points are FREQ-mode ones (full, vf and
+# tiny, the compact core); full_only_inputs runs on every build (what a build lacks is ignored).
 NARROW = "narrow_freq_word"                 # the freq16 build's own test
-CASES = [c for c in cocotb_tests(__file__) if c != NARROW]
+NEEDS = {c: (() if c == "full_only_inputs" else ("freq",)) for c in cocotb_tests(__file__) if c != NARROW}
+ITEMS = core_items(NEEDS, ("default", "compact", "vf", "foc", "minimal"))
 
 
-@pytest.mark.parametrize("case", CASES)
-def test_svpwm_core(sim, case):
-    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, "default", case)
-
-
-@pytest.mark.parametrize("case", CASES)
-def test_svpwm_core_compact(sim, case):
-    # the compact variant: the same tests, the same model with compact=True
-    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, "compact", case)
+@pytest.mark.parametrize("build,case", ITEMS, ids=[f"{b}-{c}" for b, c in ITEMS])
+def test_svpwm_core(sim, build, case):
+    run_core_sim(sim, "test_svpwm_core", Path(__file__).parent, build, case)
 
 
 def test_svpwm_core_freq16(sim):

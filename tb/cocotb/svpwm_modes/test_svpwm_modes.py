@@ -21,9 +21,9 @@ import cocotb
 import pytest
 
 from simrun import cocotb_tests
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 from svpwm_model.core import Inputs
-from svpwm_tb import CoreTB, run_core_sim
+from svpwm_tb import CoreTB, core_items, run_core_sim
 
 ICARUS = os.environ.get("SVPWM_SIM_NAME", "") == "icarus"
 P = fixed.MIN_PERIOD + 21 if ICARUS else 1536   # half period (Icarus: just above the core's MinPeriod)
@@ -213,11 +213,11 @@ async def update_modes(dut):
     assert len(exp.updates) >= 2 * (n - 1)
     # latency (update_o cycles == model loads, checked above): every update SampleLead clocks after its
     # sample, one every half period, so a reference waits at most P clocks for a sample: <= P + SampleLead - 1
-    assert all(u.load - u.sample == fixed.SAMPLE_LEAD for u in exp.updates)
+    assert all(u.load - u.sample == tb.model.lead for u in exp.updates)
     assert {b.load - a.load for a, b in zip(exp.updates, exp.updates[1:])} == {P}
     assert {u.at_peak for u in exp.updates} == {True, False}
     tb.dut._log.info("double update: reference -> update_o <= P + %d = %d clocks, + 1 to the poles",
-                     fixed.SAMPLE_LEAD, P + fixed.SAMPLE_LEAD)
+                     tb.model.lead, P + tb.model.lead)
     # prescaler: new values every 4th valley; a period change forces an update
     u = base(presc=3)
     sched = lambda k: u if k < n // 2 else base(presc=3, period=P + 8)
@@ -239,22 +239,34 @@ async def update_modes(dut):
 
 @cocotb.test()
 async def invalid_mode(dut):
-    """Mode codes 5..7: the zero vector (all phases 50 %) and cfg_err_o; a valid mode clears it."""
+    """Mode codes 5..7 and those of the modes the build lacks: the zero vector (all phases 50 %) and
+    cfg_err_o; a valid mode clears it."""
     tb = CoreTB(dut)
-    for bad in (5, 6, 7):
+    lacking = [m for m in range(5) if not config.mode_built(tb.features, m)]
+    for bad in [5, 6, 7] + lacking:
         u = base(mode=bad)
         await tb.reset(u)
         rtl, exp = await check(tb, u, lambda k: u, 4)
         assert all(u_.err for u_ in exp.updates) and int(dut.cfg_err_o.value) == 1
         assert len(set(rtl.cmp[0])) == 1, "zero vector: three equal compare values"
-    u = base()
+    # a valid mode: FREQ, else POLAR (the builds without FREQ)
+    u = base() if tb.has("freq") else base(mode=fixed.MODE_POLAR, theta=0x1234, freq=0)
     await tb.reset(u)
     await check(tb, u, lambda k: u, 4)
     assert int(dut.cfg_err_o.value) == 0
 
 
-# one pytest item per cocotb test; the full core's build is shared with tb/cocotb/svpwm_core
-@pytest.mark.parametrize("case", cocotb_tests(__file__))
-def test_svpwm_modes(sim, case):
-    run_core_sim(sim, "test_svpwm_modes", Path(__file__).parent, "default", case,
+# one pytest item per cocotb test and build that has what it drives (svpwm_tb.core_items); the builds are
+# shared with tb/cocotb/svpwm_core
+NEEDS = {"vf_law_reversal": ("vf",), "polar_angle": ("polar",), "alphabeta_rotating": ("ab",),
+         "dq_rotating": ("dq",), "overmodulation_sweep": ("polar", "ab"),
+         "overmodulation_six_step": ("polar", "vf", "ab", "sixstep"), "dpwm_modes": ("freq", "dpwm"),
+         "update_modes": ("freq", "upd", "presc"), "invalid_mode": ()}
+assert set(NEEDS) == set(cocotb_tests(__file__)), "every test states what it needs"
+ITEMS = core_items(NEEDS, ("default", "foc", "vf", "minimal"))
+
+
+@pytest.mark.parametrize("build,case", ITEMS, ids=[f"{b}-{c}" for b, c in ITEMS])
+def test_svpwm_modes(sim, build, case):
+    run_core_sim(sim, "test_svpwm_modes", Path(__file__).parent, build, case,
                  extra_env={"SVPWM_SIM_NAME": sim})

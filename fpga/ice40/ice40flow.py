@@ -229,12 +229,12 @@ def via_sources(segs: list[dict], base: Path) -> list[str]:
 
 def path_sources(segs: list[dict], routed: Path) -> dict:
     """The source lines of a path's start and end cells (their registers' always_ff) from the routed
-    netlist's cell attributes, and of its nets."""
+    netlist's cell attributes (a cell with none, e.g. a block RAM: its name), and of its nets."""
     cells = next(iter(json.loads(routed.read_text())["modules"].values()))["cells"]
 
     def src(cell: str) -> str:
         locs = cells.get(cell, {}).get("attributes", {}).get("src", "").split("|")
-        return _src_loc(locs, routed.parent) or "?"
+        return _src_loc(locs, routed.parent) or cell.split("_SB_")[0]
 
     return {"from_src": src(segs[0]["from"]["cell"]), "to_src": src(segs[-1]["to"]["cell"]),
             "via_src": via_sources(segs, routed.parent)}

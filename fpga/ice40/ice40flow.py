@@ -8,8 +8,9 @@
 --board takes a board design of fpga/ice40/ (BOARDS below: device, top, pins, sources; the one place that
 says how a board is built, for `make bitstream`, make bench and the board-parameter test).
 
-Writes build/ice40/<name>/{<name>.json,<name>.asc,<name>.bin,report.json,summary.json,*.log},
-prints a resource / Fmax table and exits 1 when a clock misses its constraint (or on a tool error).
+Writes build/ice40/<name>/{<name>.json,<name>.asc,<name>.bin,report.json,routed.json,summary.json,*.log},
+prints a resource / Fmax table (the critical path as source lines: Yosys' cell names can name another
+module) and exits 1 when a clock misses its constraint (or on a tool error).
 Place and route tries the nextpnr seeds --seed .. --seed + K - 1 (K = --seeds, default 3) in order and keeps
 the first that places and meets timing (the boards' designs are near full / near their clock, and nextpnr's
 result varies with the seed); summary.json names the seed and what the seeds before it gave.
@@ -109,8 +110,10 @@ def run_synth(out: Path, top: str, device: str, sources: list[Path],
 
 
 def run_pnr(out: Path, netlist: Path, device: str, package: str, pcf: Path | None, freq_mhz: float,
-            seed: int = 1, tag: str = "", asc: bool = True) -> Path:
-    """nextpnr-ice40 with --report; returns the report path (timing failures do not raise here)."""
+            seed: int = 1, tag: str = "", asc: bool = True, routed: bool = False) -> Path:
+    """nextpnr-ice40 with --report; returns the report path (timing failures do not raise here).
+    routed: also write the placed and routed netlist, routed<tag>.json (its cells keep their source lines,
+    which summarise turns the critical path's cell names into)."""
     out.mkdir(parents=True, exist_ok=True)
     flag = DEVICES[device][0]
     report = out / f"report{tag}.json"
@@ -122,6 +125,8 @@ def run_pnr(out: Path, netlist: Path, device: str, package: str, pcf: Path | Non
         cmd += ["--pcf-allow-unconstrained"]
     if asc:
         cmd += ["--asc", f"{out.name}.asc"]
+    if routed:
+        cmd += ["--write", f"routed{tag}.json"]
     _run(cmd, out / f"nextpnr{tag}.log", out)
     return report
 
@@ -133,7 +138,7 @@ def ff_count(stat_json: Path) -> int:
     return sum(n for t, n in cells.items() if t.startswith("SB_DFF"))
 
 
-def summarise(report: Path, stat_json: Path | None = None) -> dict:
+def summarise(report: Path, stat_json: Path | None = None, routed: Path | None = None) -> dict:
     rep = json.loads(report.read_text())
     util = rep.get("utilization", {})
 
@@ -147,14 +152,17 @@ def summarise(report: Path, stat_json: Path | None = None) -> dict:
                        "met": e["achieved"] >= e["constraint"]}
     s = {"lc": u("ICESTORM_LC"), "ebr": u("ICESTORM_RAM"), "dsp": u("ICESTORM_DSP"),
          "io": u("SB_IO"), "pll": u("ICESTORM_PLL"), "clocks": clocks,
-         "critical_path": critical_path(rep)}
+         "critical_path": critical_path(rep, routed)}
     if stat_json and stat_json.exists():
         s["ff"] = ff_count(stat_json)
     return s
 
 
-def critical_path(rep: dict) -> dict | None:
-    """The worst intra-clock path of the report: start / end cells, delay split, logic levels."""
+def critical_path(rep: dict, routed: Path | None = None) -> dict | None:
+    """The worst intra-clock path of the report: start / end cells, delay split, logic levels; with the
+    routed netlist also the source lines of its start and end registers and of the nets between
+    (from_src, to_src, via_src). The cell and net names alone can mislead: Yosys names a cell after a
+    net it reaches, often a kept net of another module (e.g. svpwm_regs' rd_* read tree)."""
     paths = [p for p in rep.get("critical_paths", []) if p.get("path")]
     if not paths:
         return None
@@ -174,6 +182,7 @@ def critical_path(rep: dict) -> dict | None:
         "from": f'{segs[0]["from"]["cell"].split("_SB_")[0]}.{segs[0]["from"]["port"]}',
         "to": f'{segs[-1]["to"]["cell"].split("_SB_")[0]}.{segs[-1]["to"]["port"]}',
         "via": via_nets(segs),
+        **(path_sources(segs, routed) if routed and routed.exists() else {}),
     }
 
 
@@ -193,6 +202,44 @@ def via_nets(segs: list[dict]) -> list[str]:
     return out
 
 
+def _src_loc(locs: list[str], base: Path) -> str | None:
+    """The first design source of a Yosys src list (library cells left out) as repository file:line."""
+    for loc in locs:
+        f, _, line = loc.rpartition(":")
+        if f and not f.startswith("/"):
+            p = (base / f).resolve()
+            return f"{p.relative_to(REPO) if p.is_relative_to(REPO) else f}:{line.split('.')[0]}"
+    return None
+
+
+def via_sources(segs: list[dict], base: Path) -> list[str]:
+    """The source lines of the path's routed nets (nextpnr's "sources"), runs collapsed ("file:line xN")."""
+    out: list[str] = []
+    for s in segs:
+        key = _src_loc(s.get("sources") or [], base) if s.get("type") == "routing" else None
+        if not key:
+            continue
+        if out and out[-1].split(" x")[0] == key:
+            n = int(out[-1].split(" x")[1]) + 1 if " x" in out[-1] else 2
+            out[-1] = f"{key} x{n}"
+        else:
+            out.append(key)
+    return out
+
+
+def path_sources(segs: list[dict], routed: Path) -> dict:
+    """The source lines of a path's start and end cells (their registers' always_ff) from the routed
+    netlist's cell attributes (a cell with none, e.g. a block RAM: its name), and of its nets."""
+    cells = next(iter(json.loads(routed.read_text())["modules"].values()))["cells"]
+
+    def src(cell: str) -> str:
+        locs = cells.get(cell, {}).get("attributes", {}).get("src", "").split("|")
+        return _src_loc(locs, routed.parent) or cell.split("_SB_")[0]
+
+    return {"from_src": src(segs[0]["from"]["cell"]), "to_src": src(segs[-1]["to"]["cell"]),
+            "via_src": via_sources(segs, routed.parent)}
+
+
 def table(name: str, s: dict) -> str:
     def uu(e):
         return f'{e["used"]}/{e["available"]}'
@@ -207,6 +254,10 @@ def table(name: str, s: dict) -> str:
     for clk, c in s["clocks"].items():
         rows.append(f'  Fmax {clk:<30} {c["achieved_mhz"]:7.2f} MHz  (constraint {c["constraint_mhz"]:.2f} MHz)'
                     f'  {"OK" if c["met"] else "FAIL"}')
+    cp = s.get("critical_path") or {}
+    if "from_src" in cp:
+        rows.append(f'  critical     {cp["delay_ns"]} ns ({cp["logic_levels"]} logic levels, '
+                    f'{cp["routing_ns"]} ns routing): {" -> ".join([cp["from_src"], *cp["via_src"], cp["to_src"]])}')
     return "\n".join(rows)
 
 
@@ -244,13 +295,14 @@ def main(argv=None) -> int:
         tried: list[str] = []
         for seed in range(a.seed, a.seed + max(1, a.seeds)):
             try:
-                report = run_pnr(out, netlist, a.device, a.package or DEVICES[a.device][3], a.pcf, a.freq, seed)
+                report = run_pnr(out, netlist, a.device, a.package or DEVICES[a.device][3], a.pcf, a.freq, seed,
+                                 routed=True)
             except FlowError as e:                      # e.g. no legal placement at this seed
                 last = str(e).strip().splitlines()[-2:]
                 tried.append(f"seed {seed}: nextpnr failed ({' '.join(last)})")
                 print(f"  {tried[-1]}", file=sys.stderr)
                 continue
-            s = summarise(report, out / "stat.json")
+            s = summarise(report, out / "stat.json", out / "routed.json")
             s.update({"name": a.name, "top": a.top, "device": a.device, "params": params, "seed": seed,
                       "seeds_tried": tried + [f"seed {seed}: placed"]})
             failed = [c for c, e in s["clocks"].items() if not e["met"]]

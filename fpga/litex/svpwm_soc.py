@@ -46,7 +46,7 @@ from svpwm_model import fixed  # noqa: E402
 CPU_TYPE, CPU_VARIANT = "serv", "standard"
 ROM_SIZE = 0x2000           # 8 KiB of EBR (16 of the UP5K's 30 blocks; the core has 6)
 SRAM_SIZE = 0x10000         # 64 KiB (two SPRAM blocks on the UP5K)
-SYS_CLK_HZ = 24_000_000     # iCEBreaker: 12 MHz -> PLL -> 24.000 MHz (fpga/ice40/icebreaker); the sim states it too
+SYS_CLK_HZ = 24_000_000     # iCEBreaker: 12 MHz -> PLL -> 24.000 MHz (DIVQ 5); the sim states it too
 FIRMWARE_DIR = REPO / "sw" / "firmware"
 BUILD = REPO / "build"
 
@@ -166,8 +166,9 @@ _icebreaker_io = [
 
 
 class _CRG(LiteXModule):
-    """12 MHz -> SB_PLL40_PAD -> 24.000 MHz sys (the settings of fpga/ice40/icebreaker: DIVR 0, DIVF 63,
-    DIVQ 5, FILTER_RANGE 1); reset while the PLL is unlocked or BTN_N is pressed, released synchronously."""
+    """12 MHz -> SB_PLL40_PAD -> 24.000 MHz sys (DIVR 0, DIVF 63, DIVQ 5, FILTER_RANGE 1:
+    fpga/ice40/icebreaker's 24 MHz settings, its default being 48 MHz); reset while the PLL is unlocked
+    or BTN_N is pressed, released synchronously."""
 
     def __init__(self, platform):
         self.cd_sys = ClockDomain()

@@ -475,8 +475,11 @@ module svpwm_core #(
   logic [2:0]            acc_sector;
   logic [PhaseWidth-1:0] acc_angle;
 
+  // the carry-select adder (the one 35-bit chain was the iCEBreaker's worst path at 48 MHz), but in the
+  // tiny build: the HX1K has no room for its 40 LC and its chain is fast enough there
   if (HasAcc) begin : gen_phase
-    svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth), .CarrySelect(1'b0)) u_phase (
+    svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth),
+                      .CarrySelect(!svpwm_pkg::is_tiny(Features))) u_phase (
       .clk_i    (clk_i),
       .rst_ni   (rst_ni),
       .run_i    (run),

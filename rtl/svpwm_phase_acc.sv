@@ -4,12 +4,12 @@
 // stepped each time theta' wraps, so no division by 6 is needed. Verma's sector + angle + fraction word
 // is the same idea: here the angle is a PhaseWidth-bit binary fraction of 60 deg.
 // Parameters: PhaseWidth - angle fraction bits; FreqWidth - signed step width (FreqWidth < PhaseWidth);
-//   CarrySelect - 1: the carry-select adder below, 0: one PhaseWidth + 1 bit carry chain
-//   (fewer logic cells; svpwm_core uses it). On the iCEBreaker build at 48 MHz the chain is
-//   the worst path at nextpnr seeds 1 and 3 (step_i's register -> 34 carries -> angle_q,
-//   20.57 ns); with CarrySelect 1 that build gives 48.10 / 49.62 / 48.11 MHz at seeds 1 / 2 / 3
-//   (+40 LC), its worst paths elsewhere (the low chain then ends at the upper bits' clock
-//   enable, run_i && neg != c: 19.2-20.3 ns).
+//   CarrySelect - 1: the carry-select adder below (svpwm_core uses it but in its tiny build), 0: one
+//   PhaseWidth + 1 bit carry chain (40 fewer logic cells). On the iCEBreaker build at 48 MHz the chain was the worst
+//   path at nextpnr seeds 1 and 3 (step_i's register -> 34 carries -> angle_q, 20.57 ns); with
+//   CarrySelect 1 that build gave 48.10 / 49.62 / 48.11 MHz at seeds 1 / 2 / 3 (+40 LC), its worst
+//   paths elsewhere (the low chain then ends at the upper bits' clock enable, run_i && neg != c:
+//   19.2-20.3 ns).
 //   Both give the same angle and sector in every clock.
 // One LSB of step_i is 60 deg / 2^PhaseWidth per clock, i.e. f_out = step * f_clk / (6 * 2^PhaseWidth).
 // Latency: none: angle_o is a register; sector_o is the sector register stepped by the wrap registered

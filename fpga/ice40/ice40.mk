@@ -5,8 +5,8 @@
 #   make bitstream BOARD=icebreaker|icestick   build/ice40/<board>/<board>.bin + report.json + table
 #   make bitstreams                            both boards (fails when timing is not met)
 #   make bitstream-test                        the boards make test builds (ICE40_TEST_BOARDS)
-#   make synth-bench [SEEDS=5]                 out-of-context core benchmark, full and compact core
-#                                              -> build/ice40/synth_bench.json, synth_bench_compact.json;
+#   make synth-bench [SEEDS=5]                 out-of-context core benchmark, every named configuration
+#                                              (full foc vf minimal tiny) -> build/ice40/synth_bench.json;
 #                                              then make families-bench (ECP5, Gowin, Xilinx: fpga/families.mk)
 #   make ice40-test                            UART bridge cocotb test, svpwmctl and FuseSoC tests
 #   make lint-ice40                            lint the board system svpwm_ice40_sys (`make lint` runs it too)
@@ -57,7 +57,6 @@ bitstream-test: $(STAMP)
 
 synth-bench: $(STAMP)
 	$(PY) scripts/synth_bench.py --seeds $(SEEDS)
-	$(PY) scripts/synth_bench.py --compact --seeds $(SEEDS)
 	@$(MAKE) -f $(firstword $(MAKEFILE_LIST)) families-bench
 
 ice40-test: $(STAMP)

@@ -83,6 +83,7 @@ def test_defaults(tool, top):
 # module -> (its generate block of the check, parameter overrides making it fire)
 BAD = {
     "svpwm_core":      ("gen_bad_min_period", {"MinPeriod": 10}),
+    "svpwm_ucode":     ("gen_bad_features", {"Features": 3}),     # FREQ + VF, serial: no program
     "svpwm_mmio":      ("gen_bad_cnt_width", {"CntWidth": 17}),
     "svpwm_regs":      ("gen_bad_clk_hz", {"ClkHz": -1}),
     "svpwm_carrier":   ("gen_bad_width", {"CntWidth": 4}),

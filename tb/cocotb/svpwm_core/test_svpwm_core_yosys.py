@@ -32,7 +32,8 @@ def test_freq_clamp_in_yosys(compact, fmax):
     out.mkdir(parents=True, exist_ok=True)
     rel = out.relative_to(REPO)
     cmds = [f"read_verilog -sv {' '.join(f'rtl/{s}.sv' for s in SRCS)}",
-            f"chparam -set Compact {compact} -set FreqMax {fmax} svpwm_core", "prep -top svpwm_core", "flatten"]
+            f"chparam -set Features {1 if compact else 0x3FFF} -set FreqMax {fmax} svpwm_core",
+            "prep -top svpwm_core", "flatten"]
     for i, f in enumerate(words):
         cmds.append(f"tee -q {'-a' if i else '-o'} {rel}/eval.txt eval -set freq_i {f} "
                     f"-show freq_over -show freq_clamped")

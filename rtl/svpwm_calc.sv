@@ -117,6 +117,18 @@ module svpwm_calc #(
   end else begin : gen_engine
     localparam int W       = svpwm_pkg::acc_width(CntWidth);
     localparam int Latency = svpwm_pkg::calc_latency(Features);
+    // the field values the program uses (a bit per value): only their multiplexer arms, flags and
+    // conditions are built (a value outside never reaches the decode: svpwm_pkg::used_*)
+    localparam logic [31:0] UsedSrc  = svpwm_pkg::used_src(Features);
+    localparam logic [31:0] UsedIsel = svpwm_pkg::used_isel(Features);
+    localparam logic [31:0] UsedPsh  = svpwm_pkg::used_psh(Features);
+    localparam logic [31:0] UsedRc   = svpwm_pkg::used_rc(Features);
+    localparam logic [31:0] UsedFlag = svpwm_pkg::used_flag(Features);
+    localparam logic [31:0] UsedSec  = svpwm_pkg::used_sec(Features);
+    localparam logic [31:0] UsedPred = svpwm_pkg::used_pred(Features);
+    localparam logic [31:0] UsedBinv = svpwm_pkg::used_binv(Features);
+    localparam logic [31:0] UsedCin  = svpwm_pkg::used_cin(Features);
+    localparam logic [31:0] UsedCond = svpwm_pkg::used_cond(Features);
 
     // ---- step counter and microcode ------------------------------------------------------------------
     logic [8:0]        pc_d, pc_q;
@@ -205,10 +217,10 @@ module svpwm_calc #(
 
     always_comb begin
       unique case (pred)
-        3'(svpwm_pkg::PredTh): pred_ok = is_th;
-        3'(svpwm_pkg::PredAb): pred_ok = is_ab;
-        3'(svpwm_pkg::PredDq): pred_ok = is_dq;
-        3'(svpwm_pkg::PredXy): pred_ok = is_xy;
+        3'(svpwm_pkg::PredTh): pred_ok = UsedPred[svpwm_pkg::PredTh] && is_th;
+        3'(svpwm_pkg::PredAb): pred_ok = UsedPred[svpwm_pkg::PredAb] && is_ab;
+        3'(svpwm_pkg::PredDq): pred_ok = UsedPred[svpwm_pkg::PredDq] && is_dq;
+        3'(svpwm_pkg::PredXy): pred_ok = UsedPred[svpwm_pkg::PredXy] && is_xy;
         default:    pred_ok = 1'b1;
       endcase
     end
@@ -318,15 +330,16 @@ module svpwm_calc #(
     logic [2:0]  rbits, rbits_d, rbits_q;
     logic        cbit, cbit_d, cbit_q, rcc_d, rcc_q;
     logic [31:0] cond_oh_d, cond_oh_q;
-    assign cond_oh_d = 32'd1 << cond_d;
+    assign cond_oh_d = (32'd1 << cond_d) & UsedCond;
     assign cbit      = |(cond_oh_q & c);
     always_comb begin
       unique case (rc_q)
-        3'(svpwm_pkg::RcSw):    rbits = sw_mod3;
-        3'(svpwm_pkg::RcSw1):   rbits = sw1_mod3;
-        3'(svpwm_pkg::RcSnap):  rbits = snap;
-        3'(svpwm_pkg::RcDpwm):  rbits = {1'b0, dpdec_q[1], dpdec_q[0] || (dp60_q && !flags_q[svpwm_pkg::FDp60])};
-        3'(svpwm_pkg::RcMerge): rbits = {1'b0, is_err, is_xy};
+        3'(svpwm_pkg::RcSw):    rbits = UsedRc[svpwm_pkg::RcSw] ? sw_mod3 : 3'd0;
+        3'(svpwm_pkg::RcSw1):   rbits = UsedRc[svpwm_pkg::RcSw1] ? sw1_mod3 : 3'd0;
+        3'(svpwm_pkg::RcSnap):  rbits = UsedRc[svpwm_pkg::RcSnap] ? snap : 3'd0;
+        3'(svpwm_pkg::RcDpwm):  rbits = !UsedRc[svpwm_pkg::RcDpwm] ? 3'd0
+                                      : {1'b0, dpdec_q[1], dpdec_q[0] || (dp60_q && !flags_q[svpwm_pkg::FDp60])};
+        3'(svpwm_pkg::RcMerge): rbits = UsedRc[svpwm_pkg::RcMerge] ? {1'b0, is_err, is_xy} : 3'd0;
         default:     rbits = 3'd0;
       endcase
     end
@@ -444,6 +457,10 @@ module svpwm_calc #(
         4'(svpwm_pkg::InMv):     in_sel = (HasSix && om_i && !is_xy) ? 16'(svpwm_pkg::MVertex) : 16'hFFFF;
         default:      in_sel = 16'd0;
       endcase
+      if (!UsedIsel[{1'b0, opnd_d[3:0]}]) begin   // an input the program never reads: no arm
+        in_sel    = 16'd0;
+        in_signed = 1'b0;
+      end
     end
     assign in_d = {in_signed && in_sel[15], in_sel};
 
@@ -452,8 +469,10 @@ module svpwm_calc #(
     always_comb begin
       unique case (opnd_q[1:0])
         2'd0:    begin p_sh = p >> svpwm_pkg::Psh0; rbit = p[svpwm_pkg::Psh0 - 1]; end
-        2'd1:    begin p_sh = p >> svpwm_pkg::Psh1; rbit = p[svpwm_pkg::Psh1 - 1]; end
-        2'd2:    begin p_sh = p >> svpwm_pkg::Psh2; rbit = p[svpwm_pkg::Psh2 - 1]; end
+        2'd1:    begin p_sh = UsedPsh[1] ? p >> svpwm_pkg::Psh1 : '0;
+                       rbit = UsedPsh[1] && p[svpwm_pkg::Psh1 - 1]; end
+        2'd2:    begin p_sh = UsedPsh[2] ? p >> svpwm_pkg::Psh2 : '0;
+                       rbit = UsedPsh[2] && p[svpwm_pkg::Psh2 - 1]; end
         default: begin p_sh = p;         rbit = 1'b0;       end
       endcase
     end
@@ -463,13 +482,13 @@ module svpwm_calc #(
     assign acc_s = acc_q;
     always_comb begin
       unique case (src_q)
-        3'(svpwm_pkg::AsRom):  aux_d = W'(rom_q);
-        3'(svpwm_pkg::AsProd): aux_d = W'(p_sh);
-        3'(svpwm_pkg::AsIn):   aux_d = W'($signed(in_q));
-        3'(svpwm_pkg::AsShr9): aux_d = W'(acc_s >>> 9);
-        3'(svpwm_pkg::AsShr1): aux_d = W'(acc_s >>> 1);
-        3'(svpwm_pkg::AsQ):    aux_d = W'(q_q);
-        3'(svpwm_pkg::AsAng):  aux_d = W'(ang_q);
+        3'(svpwm_pkg::AsRom):  aux_d = UsedSrc[svpwm_pkg::AsRom] ? W'(rom_q) : '0;
+        3'(svpwm_pkg::AsProd): aux_d = UsedSrc[svpwm_pkg::AsProd] ? W'(p_sh) : '0;
+        3'(svpwm_pkg::AsIn):   aux_d = UsedSrc[svpwm_pkg::AsIn] ? W'($signed(in_q)) : '0;
+        3'(svpwm_pkg::AsShr9): aux_d = UsedSrc[svpwm_pkg::AsShr9] ? W'(acc_s >>> 9) : '0;
+        3'(svpwm_pkg::AsShr1): aux_d = UsedSrc[svpwm_pkg::AsShr1] ? W'(acc_s >>> 1) : '0;
+        3'(svpwm_pkg::AsQ):    aux_d = UsedSrc[svpwm_pkg::AsQ] ? W'(q_q) : '0;
+        3'(svpwm_pkg::AsAng):  aux_d = UsedSrc[svpwm_pkg::AsAng] ? W'(ang_q) : '0;
         default:    aux_d = '0;
       endcase
     end
@@ -477,14 +496,15 @@ module svpwm_calc #(
     always_comb begin
       unique case (binv_sel_q)
         2'(svpwm_pkg::BinvYes):   binv_d = 1'b1;
-        2'(svpwm_pkg::BinvC):     binv_d = cbit_q;
-        2'(svpwm_pkg::BinvNsign): binv_d = !sign_q;
+        2'(svpwm_pkg::BinvC):     binv_d = UsedBinv[svpwm_pkg::BinvC] && cbit_q;
+        2'(svpwm_pkg::BinvNsign): binv_d = UsedBinv[svpwm_pkg::BinvNsign] && !sign_q;
         default:       binv_d = 1'b0;
       endcase
       unique case (cin_sel_q)
         2'(svpwm_pkg::Cin1):    cin_d = 1'b1;
         2'(svpwm_pkg::CinBinv): cin_d = binv_d;
-        2'(svpwm_pkg::CinRnd):  cin_d = ((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d;
+        2'(svpwm_pkg::CinRnd):  cin_d = UsedCin[svpwm_pkg::CinRnd]
+                                        && (((src_q == 3'(svpwm_pkg::AsProd)) && rbit) ^ binv_d);
         default:     cin_d = 1'b0;
       endcase
     end
@@ -497,7 +517,7 @@ module svpwm_calc #(
     logic       fset_q, qsh_q;
     logic [4:0] fidx_q;
     for (genvar k = 0; k < svpwm_pkg::CalcFlags; k++) begin : gen_flags
-      assign flags_d[k] = (fset_q && fidx_q == 5'(k)) ? sign_q : flags_q[k];
+      assign flags_d[k] = (UsedFlag[k] && fset_q && fidx_q == 5'(k)) ? sign_q : flags_q[k];
     end
     assign q_d = qsh_q ? {q_q[14:0], !sign_q} : q_q;
 
@@ -516,9 +536,9 @@ module svpwm_calc #(
       end
       if (ald && pred_ok) ang_d = acc_q[15:0];
       unique case (sec_op)
-        2'(svpwm_pkg::SecTheta): if (pred_ok) sec_d = acc_q[18:16];
-        2'(svpwm_pkg::SecXyz):   if (pred_ok) sec_d = is_dq ? sec_dq : sw_q;
-        2'(svpwm_pkg::SecErr):   if (is_err) sec_d = 3'd0;
+        2'(svpwm_pkg::SecTheta): if (UsedSec[svpwm_pkg::SecTheta] && pred_ok) sec_d = acc_q[18:16];
+        2'(svpwm_pkg::SecXyz):   if (UsedSec[svpwm_pkg::SecXyz] && pred_ok) sec_d = is_dq ? sec_dq : sw_q;
+        2'(svpwm_pkg::SecErr):   if (UsedSec[svpwm_pkg::SecErr] && is_err) sec_d = 3'd0;
         default:      ;
       endcase
     end

@@ -51,6 +51,109 @@ package svpwm_pkg;
     endcase
   endfunction
 
+  // the field values a build's program uses, a bit per value (calc_prog.used_values): svpwm_calc builds
+  // the multiplexer arms, flags and conditions of these only (default: all)
+  function automatic logic [31:0] used_src(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_src = 32'h000000ff;   // full
+      32'h219c: used_src = 32'h000000ff;   // foc
+      32'h21e3: used_src = 32'h0000007f;   // vf
+      32'h2004: used_src = 32'h0000007f;   // minimal
+      32'h01ff: used_src = 32'h000000ff;   // full_serial
+      default: used_src = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_isel(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_isel = 32'h00003fff;   // full
+      32'h219c: used_isel = 32'h00001f0f;   // foc
+      32'h21e3: used_isel = 32'h00003ff1;   // vf
+      32'h2004: used_isel = 32'h00000303;   // minimal
+      32'h01ff: used_isel = 32'h00003fff;   // full_serial
+      default: used_isel = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_psh(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_psh = 32'h0000000f;   // full
+      32'h219c: used_psh = 32'h0000000f;   // foc
+      32'h21e3: used_psh = 32'h0000000d;   // vf
+      32'h2004: used_psh = 32'h0000000d;   // minimal
+      32'h01ff: used_psh = 32'h00000007;   // full_serial
+      default: used_psh = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_rc(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_rc = 32'h0000007f;   // full
+      32'h219c: used_rc = 32'h0000005f;   // foc
+      32'h21e3: used_rc = 32'h00000073;   // vf
+      32'h2004: used_rc = 32'h00000053;   // minimal
+      32'h01ff: used_rc = 32'h0000007f;   // full_serial
+      default: used_rc = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_flag(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_flag = 32'h0003ffff;   // full
+      32'h219c: used_flag = 32'h0003dbff;   // foc
+      32'h21e3: used_flag = 32'h0003e403;   // vf
+      32'h2004: used_flag = 32'h0003c003;   // minimal
+      32'h01ff: used_flag = 32'h0003ffff;   // full_serial
+      default: used_flag = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_sec(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_sec = 32'h0000000f;   // full
+      32'h219c: used_sec = 32'h0000000f;   // foc
+      32'h21e3: used_sec = 32'h00000009;   // vf
+      32'h2004: used_sec = 32'h0000000b;   // minimal
+      32'h01ff: used_sec = 32'h0000000f;   // full_serial
+      default: used_sec = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_pred(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_pred = 32'h0000001f;   // full
+      32'h219c: used_pred = 32'h0000001f;   // foc
+      32'h21e3: used_pred = 32'h00000001;   // vf
+      32'h2004: used_pred = 32'h00000003;   // minimal
+      32'h01ff: used_pred = 32'h0000001f;   // full_serial
+      default: used_pred = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_binv(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_binv = 32'h0000000f;   // full
+      32'h219c: used_binv = 32'h0000000f;   // foc
+      32'h21e3: used_binv = 32'h0000000f;   // vf
+      32'h2004: used_binv = 32'h0000000f;   // minimal
+      32'h01ff: used_binv = 32'h0000000f;   // full_serial
+      default: used_binv = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_cin(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_cin = 32'h0000000f;   // full
+      32'h219c: used_cin = 32'h0000000f;   // foc
+      32'h21e3: used_cin = 32'h0000000f;   // vf
+      32'h2004: used_cin = 32'h0000000f;   // minimal
+      32'h01ff: used_cin = 32'h0000000f;   // full_serial
+      default: used_cin = '1;
+    endcase
+  endfunction
+  function automatic logic [31:0] used_cond(input logic [31:0] features);
+    unique case (features & CalcFeatures)
+      32'h21ff: used_cond = 32'h69005f57;   // full
+      32'h219c: used_cond = 32'h68001b57;   // foc
+      32'h21e3: used_cond = 32'h09004403;   // vf
+      32'h2004: used_cond = 32'h08000003;   // minimal
+      32'h01ff: used_cond = 32'h69005f57;   // full_serial
+      default: used_cond = '1;
+    endcase
+  endfunction
+
   // smallest MinPeriod default (the shortest half period the tests exercise)
   localparam int MinPeriodBase = 48;
   // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,

@@ -161,6 +161,19 @@ def render_pkg() -> str:
         "    endcase",
         "  endfunction",
         "",
+        "  // the field values a build's program uses, a bit per value (calc_prog.used_values): svpwm_calc builds",
+        "  // the multiplexer arms, flags and conditions of these only (default: all)",
+    ]
+    used = {n: calc_prog.used_values(f) for n, f in PROGRAMS.items()}
+    for fld in calc_prog.USED_FIELDS:
+        fn = f"used_{fld}"
+        L += [f"  function automatic logic [31:0] {fn}(input logic [31:0] features);",
+              "    unique case (features & CalcFeatures)"]
+        for n, f in PROGRAMS.items():
+            L.append(f"      32'h{calc_prog.program_key(f):04x}: {fn} = 32'h{used[n][fld]:08x};   // {n}")
+        L += [f"      default: {fn} = '1;", "    endcase", "  endfunction"]
+    L += [
+        "",
         "  // smallest MinPeriod default (the shortest half period the tests exercise)",
         f"  localparam int MinPeriodBase = {calc_prog.fixed.MIN_PERIOD_BASE};",
         "  // clocks after the reset release before svpwm_core may run: configuration, lowest legal period,",

@@ -1065,6 +1065,32 @@ def calc_latency(features: int = config.FULL) -> int:
     return program(features).latency
 
 
+# the fields whose used values svpwm_pkg lists per program (svpwm_calc builds only those arms)
+USED_FIELDS = ("src", "isel", "psh", "rc", "flag", "sec", "pred", "binv", "cin", "cond")
+
+
+def used_values(features: int) -> dict[str, int]:
+    """Per field of USED_FIELDS, a mask of the values the build's program uses: src (asrc), isel (of the
+    steps whose B is an input), psh (of the product steps), rc, flag (the flags set), sec, pred, binv, cin,
+    cond (the conditions read by RC_C or BINV_C). A value outside it never reaches svpwm_calc's decode."""
+    st = program(features).steps
+    vals: dict[str, set] = {
+        "src": {s["asrc"] for s in st if "asrc" in s},
+        "isel": {s["isel"] for s in st if s.get("asrc") == AS_IN},
+        "psh": {s["psh"] for s in st if s.get("asrc") == AS_PROD},
+        "rc": {s.get("rc", RC_NONE) for s in st},
+        "flag": {s["fidx"] for s in st if s.get("fset")},
+        "sec": {s["sec"] for s in st if s.get("sec")},
+        "pred": {s.get("pred", PRED_ALL) for s in st},
+        "binv": {s.get("binv", BINV_NO) for s in st},
+        "cin": {s.get("cin", CIN_0) for s in st},
+        "cond": {s["ci"] for s in st if s.get("rc") == RC_C} | {s["bci"] for s in st if s.get("binv") == BINV_C},
+    }
+    for k in ("src", "psh", "rc", "sec", "pred", "binv", "cin"):
+        vals[k] |= {0}                      # the default arm (no operand selection, no condition)
+    return {k: sum(1 << v for v in vs) for k, vs in vals.items()}
+
+
 def expect(inp: dict, features: int = config.FULL) -> tuple[int, tuple[int, int, int], bool, bool]:
     """What the calculator must return: fixed.modulate + fixed.snap_min_pulse per phase."""
     return expect_carry(inp, features)[:4]

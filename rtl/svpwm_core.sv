@@ -964,8 +964,9 @@ module svpwm_core #(
   // on after the hold
   logic f_hi_ever_q = 1'b0;
   always_ff @(posedge clk_i) if (f_hi[0]) f_hi_ever_q <= 1'b1;
-  // (not the tiny core: its first gate comes too late for the cover depth)
-  if (!svpwm_pkg::is_tiny(Features)) begin : gen_f_f1_cover
+  // (builds with peak updates: with valley updates only (minimal, tiny) the first gate, a high side that
+  // the reset then cuts, and the hold come too late for the cover depth, 30)
+  if (HasUpd) begin : gen_f_f1_cover
     always_ff @(posedge clk_i) if (f_past_valid)
       cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
   end

@@ -44,3 +44,11 @@ def test_readme_table():
         assert m, f"README: no row for configuration {n}"
         lat = fixed.latencies(f)
         assert (int(m[1]), int(m[2])) == (lat["SAMPLE_LEAD"], lat["MIN_PERIOD"]), n
+
+
+def test_formal_minimal_mask():
+    """formal/core.sby's minimal tasks set the minimal configuration's mask (typed there: .sby has no
+    package)."""
+    sby = (README.parent / "formal" / "core.sby").read_text()
+    m = re.search(r"^minimal: chparam -set Features (\d+) svpwm_core$", sby, re.M)
+    assert m and int(m[1]) == config.CONFIGS["minimal"], m and m[1]

@@ -104,14 +104,6 @@ module svpwm_regs #(
     $error("svpwm_regs: AddrWidth must be 7..32, got %0d", AddrWidth);
 `endif
   end
-  if ((Features & ~svpwm_pkg::CfgAll) != '0) begin : gen_bad_features
-`ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
-    initial $fatal(1, "svpwm_regs: Features 0x%0h has bits that are no feature (svpwm_pkg::CfgAll 0x%0h) (%m)", Features, svpwm_pkg::CfgAll);
-`else              // at elaboration (Yosys formats $display only, then stops at $error)
-    initial $display("svpwm_regs: Features 0x%0h has bits that are no feature (svpwm_pkg::CfgAll 0x%0h) (%m)", Features, svpwm_pkg::CfgAll);
-    $error("svpwm_regs: Features 0x%0h has bits that are no feature (svpwm_pkg::CfgAll 0x%0h)", Features, svpwm_pkg::CfgAll);
-`endif
-  end
   if (ClkHz < 0) begin : gen_bad_clk_hz
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
     initial $fatal(1, "svpwm_regs: ClkHz must be >= 0, got %0d (%m)", ClkHz);

@@ -550,10 +550,6 @@ def render_sv(regs: list[Reg], size: int) -> str:
           f"  if (AddrWidth < {min_aw} || AddrWidth > 32) begin : gen_bad_addr_width",
           *_param_check(f"svpwm_regs: AddrWidth must be {min_aw}..32, got %0d", "AddrWidth"),
           "  end"]
-    if FEATURE_PARAM in params:
-        L += [f"  if (({FEATURE_PARAM} & ~svpwm_pkg::CfgAll) != '0) begin : gen_bad_features",
-              *_param_check(f"svpwm_regs: {FEATURE_PARAM} 0x%0h has bits that are no feature (svpwm_pkg::CfgAll "
-                            f"0x%0h)", f"{FEATURE_PARAM}, svpwm_pkg::CfgAll"), "  end"]
     for p, (w, _, _, _) in params.items():
         if p == FEATURE_PARAM:
             continue

@@ -18,7 +18,7 @@ Supported field kinds (anything else in the RDL is refused):
 
 rst_param (project property) names an svpwm_regs parameter that gives a field's reset value (const
 fields: its value); the RDL reset is the parameter's default. The parameter of a 32-bit field is an
-`int` (checked >= 0 at elaboration, e.g. ClkHz), of a 1-bit field a `bit` (e.g. Compact), of another
+`int` (checked >= 0 at elaboration, e.g. ClkHz), of a 1-bit field a `bit` (e.g. Trim), of another
 field a `logic [w-1:0]` (e.g. GatePol).
 
 features (project property, on a register or field): the config.FEATURES feature(s) it belongs to,

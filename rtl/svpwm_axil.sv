@@ -6,7 +6,9 @@
 // Parameters:
 //   AddrWidth - byte address width of the bus port (>= 7); addresses without a register read 0
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
-//               MinPeriod defaults to the full core's default (svpwm_pkg::min_period(CfgFull), as svpwm_mmio)
+//               MinPeriod defaults to the build's (svpwm_pkg::min_period(Features), as svpwm_mmio)
+//   Features  - the build, a mask of svpwm_pkg::Feat* bits (default svpwm_pkg::CfgFull; svpwm_mmio):
+//               registers and fields of a feature not built read 0 and ignore writes (FEATURES.features)
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
 //   CntWidth  - the core's carrier / period / compare width, 12..16 (default 16, the PERIOD field's);
 //               a PERIOD above 2^CntWidth - 1 runs as 2^CntWidth - 1 (svpwm_mmio)
@@ -20,7 +22,8 @@
 
 module svpwm_axil #(
   parameter int         AddrWidth = 8,                           // byte address width (>= 7)
-  parameter int         MinPeriod = svpwm_pkg::min_period(svpwm_pkg::CfgFull),   // svpwm_core MinPeriod
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,          // the build (svpwm_pkg::Cfg*)
+  parameter int         MinPeriod = svpwm_pkg::min_period(Features),   // svpwm_core MinPeriod
   parameter int         FreqMax   = (1 << 23) - 1,               // svpwm_core FreqMax (FreqWidth 24)
   parameter logic [1:0] GatePol   = 2'b00,                       // svpwm_core GatePol, CTRL.pol reset
   parameter int         ClkHz     = 0,                           // clock in Hz, read in CLK_HZ (0 = not stated)
@@ -80,6 +83,7 @@ module svpwm_axil #(
   );
 
   svpwm_mmio #(
+    .Features (Features),
     .AddrWidth (AddrWidth), .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol), .ClkHz (ClkHz),
     .CntWidth (CntWidth)
   ) u_mmio (

@@ -10,12 +10,15 @@
 //               before every request (uart_reg_bridge): the register select is then decoded a clock
 //               ahead, registered (shorter paths); 0 (default) for the bus adapters
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol);
-//               MinPeriod defaults to the core's default of the variant (svpwm_pkg::min_period: 251, compact 230)
+//               MinPeriod defaults to the core's default of the build (svpwm_pkg::min_period(Features))
 //   ClkHz     - the core clock in Hz, read back in CLK_HZ for host software (0 = not stated; >= 0)
-//   Compact   - 1: the compact variant (small FPGAs): svpwm_core's tiny build (FREQ mode, continuous
-//               SVPWM, valley updates, no sync start) and svpwm_regs with only the registers it uses
-//               (docs/registers.md, column compact; the others read 0; no MP: the core runs with a
-//               minimum pulse of 0, every gate pulse still lasts >= DT); read back in FEATURES.compact
+//   Features  - the build: a mask of svpwm_pkg::Feat* bits (svpwm_pkg::CfgFull default, CfgFoc, CfgVf,
+//               CfgMinimal, CfgTiny; model/svpwm_model/config.py), svpwm_core's and svpwm_regs': the
+//               registers and fields of a feature not built read 0 and ignore writes (docs/registers.md,
+//               column features); read back in FEATURES.features
+//   Trim      - 1: the iCEstick's board cut of svpwm_regs (docs/registers.md, column trim): no MP (the
+//               core runs with a minimum pulse of 0, every gate pulse still lasts >= DT), no CTRL.mode
+//               (mode 0, FREQ) and CTRL.adc_trig, no CARRIER, PERIOD_ACT, CMP_A..C; read back in FEATURES.trim
 //   CntWidth  - the core's carrier / period / compare width, 12..16 (default 16, the PERIOD field's; the
 //               iCEstick uses 12 to fit the HX1K); a PERIOD above 2^CntWidth - 1 runs as 2^CntWidth - 1
 //               and sets STATUS.period_clamp while it is there. Read back in CONFIG.cnt_width.
@@ -26,11 +29,11 @@
 `default_nettype none
 
 module svpwm_mmio #(
-  parameter bit         Compact   = 1'b0,
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,
+  parameter bit         Trim      = 1'b0,
   parameter int         AddrWidth = 8,
   parameter bit         AddrEarly = 1'b0,
-  parameter int         MinPeriod = svpwm_pkg::min_period(Compact ? svpwm_pkg::CfgTiny
-                                                                      : svpwm_pkg::CfgFull),
+  parameter int         MinPeriod = svpwm_pkg::min_period(Features),
   parameter int         FreqMax   = (1 << 23) - 1,
   parameter logic [1:0] GatePol   = 2'b00,
   parameter int         ClkHz     = 0,
@@ -104,7 +107,8 @@ module svpwm_mmio #(
     .PhaseWidth(8'(PhaseWidth)),
     .GatePol   (GatePol),
     .ClkHz     (ClkHz),
-    .Compact   (Compact)
+    .Features  (Features),
+    .Trim      (Trim)
   ) u_regs (
     .clk_i (clk_i), .rst_ni (rst_ni),
     .req_i (req_i), .we_i (we_i), .addr_i (addr_i), .wdata_i (wdata_i), .be_i (be_i), .rdata_o (rdata_o),
@@ -137,7 +141,7 @@ module svpwm_mmio #(
   svpwm_core #(
     .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
     .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol),
-    .Features (Compact ? svpwm_pkg::CfgTiny : svpwm_pkg::CfgFull)   // (the register block: full or tiny)
+    .Features (Features)
   ) u_core (
     .clk_i (clk_i), .rst_ni (rst_ni), .en_i (en), .mode_i (mode), .freq_i (freq), .m_i (m),
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),

@@ -15,10 +15,14 @@
 //   PhaseWidth - value of CONFIG.phase_width (rst_param; RDL default 34)
 //   GatePol - reset value of CTRL.pol (rst_param; RDL default 0)
 //   ClkHz - int >= 0, value of CLK_HZ.clk_hz (rst_param; RDL default 0)
-//   Compact - 1: the compact variant: only the registers and fields marked in_compact in
-//             rdl/svpwm.rdl (docs/registers.md) exist; the others read 0, ignore writes and have
-//             no storage (their outputs are constant 0, their live inputs unread); value of
-//             FEATURES.compact (RDL default 0)
+//   Features - the build's feature mask (svpwm_pkg::Feat* bits, svpwm_pkg::Cfg* configurations,
+//             model/svpwm_model/config.py; the core's Features): the registers and fields of a
+//             feature not built (rdl/svpwm.rdl `features`, docs/registers.md) read 0, ignore writes
+//             and have no storage (their outputs are constant 0, their live inputs unread);
+//             bits 13:0 read back in FEATURES.features (default svpwm_pkg::CfgFull)
+//   Trim - 1: the iCEstick's board cut: the registers and fields marked `trimmed` in rdl/svpwm.rdl
+//             (docs/registers.md, column trim) are not built either; value of
+//             FEATURES.trim (RDL default 0)
 // Latency: a write takes effect at the clock edge that samples req_i && we_i; rdata_o is valid
 // the clock after a read request and holds until the next read request.
 // Restrictions: byte enables be_i select the written byte lanes; RO registers and fields ignore
@@ -35,7 +39,8 @@ module svpwm_regs #(
   parameter logic [7:0] PhaseWidth = 8'h22,
   parameter logic [1:0] GatePol = 2'h0,
   parameter int ClkHz = 0,
-  parameter bit Compact = 1'b0
+  parameter logic [31:0] Features = svpwm_pkg::CfgFull,
+  parameter bit Trim = 1'b0
 ) (
   input  logic                 clk_i,     // clock
   input  logic                 rst_ni,    // asynchronous reset, active low
@@ -46,32 +51,32 @@ module svpwm_regs #(
   input  logic [3:0]           be_i,      // byte enables of wdata_i
   output logic [31:0]          rdata_o,   // read data, the clock after the read request
   output logic         ctrl_en_o,              // CTRL.en: RW
-  output logic         ctrl_sync_en_o,         // CTRL.sync_en: RW (not in the compact variant)
+  output logic         ctrl_sync_en_o,         // CTRL.sync_en: RW (needs sync)
   output logic         ctrl_trip_cbc_o,        // CTRL.trip_cbc: RW
   output logic         ctrl_safe_lo_o,         // CTRL.safe_lo: RW
   output logic [1:0]   ctrl_pol_o,             // CTRL.pol: RW
   output logic         ctrl_lock_o,            // CTRL.lock: W1S (sticky)
   output logic         ctrl_fault_clear_o,     // CTRL.fault_clear: W1 pulse, reads 0
-  output logic [2:0]   ctrl_mode_o,            // CTRL.mode: RW (not in the compact variant)
-  output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW (not in the compact variant)
-  output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW (not in the compact variant)
-  output logic         ctrl_om_o,              // CTRL.om: RW (not in the compact variant)
-  output logic         ctrl_vsc_off_o,         // CTRL.vsc_off: RW (not in the compact variant)
-  output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW (not in the compact variant)
-  output logic [23:0]  freq_o,                 // FREQ.freq: RW
+  output logic [2:0]   ctrl_mode_o,            // CTRL.mode: RW (not if Trim)
+  output logic [1:0]   ctrl_upd_o,             // CTRL.upd: RW (needs upd)
+  output logic [1:0]   ctrl_dpwm_o,            // CTRL.dpwm: RW (needs dpwm)
+  output logic         ctrl_om_o,              // CTRL.om: RW (needs sixstep)
+  output logic         ctrl_vsc_off_o,         // CTRL.vsc_off: RW (needs carry)
+  output logic [1:0]   ctrl_adc_trig_o,        // CTRL.adc_trig: RW (not if Trim)
+  output logic [23:0]  freq_o,                 // FREQ.freq: RW (needs freq or vf)
   output logic [15:0]  m_o,                    // M.m: RW
-  output logic [15:0]  theta_o,                // THETA.theta: RW (not in the compact variant)
-  output logic [15:0]  v1_o,                   // V1.v1: RW (not in the compact variant)
-  output logic [15:0]  v2_o,                   // V2.v2: RW (not in the compact variant)
-  output logic [15:0]  vf_boost_o,             // VF_BOOST.vf_boost: RW (not in the compact variant)
-  output logic [15:0]  vf_slope_o,             // VF_SLOPE.vf_slope: RW (not in the compact variant)
-  output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW (not in the compact variant)
+  output logic [15:0]  theta_o,                // THETA.theta: RW (needs polar or dq)
+  output logic [15:0]  v1_o,                   // V1.v1: RW (needs ab or dq)
+  output logic [15:0]  v2_o,                   // V2.v2: RW (needs ab or dq)
+  output logic [15:0]  vf_boost_o,             // VF_BOOST.vf_boost: RW (needs vf)
+  output logic [15:0]  vf_slope_o,             // VF_SLOPE.vf_slope: RW (needs vf)
+  output logic [15:0]  vf_mmax_o,              // VF_MMAX.vf_mmax: RW (needs vf)
   output logic [15:0]  period_o,               // PERIOD.period: RW
   output logic [9:0]   dt_dt_o,                // DT.dt: RW
-  output logic [9:0]   dt_dtf_o,               // DT.dtf: RW (not in the compact variant)
-  output logic         dt_dtf_en_o,            // DT.dtf_en: RW (not in the compact variant)
-  output logic [9:0]   mp_o,                   // MP.mp: RW (not in the compact variant)
-  output logic [7:0]   presc_o,                // PRESC.presc: RW (not in the compact variant)
+  output logic [9:0]   dt_dtf_o,               // DT.dtf: RW (needs dtf)
+  output logic         dt_dtf_en_o,            // DT.dtf_en: RW (needs dtf)
+  output logic [9:0]   mp_o,                   // MP.mp: RW (not if Trim)
+  output logic [7:0]   presc_o,                // PRESC.presc: RW (needs presc)
   input  logic         status_running_i,       // STATUS.running: RO (live)
   input  logic         status_sat_i,           // STATUS.sat: RO (live)
   input  logic         status_cfg_err_i,       // STATUS.cfg_err: RO (live)
@@ -80,15 +85,15 @@ module svpwm_regs #(
   input  logic         status_fault_i,         // STATUS.fault: RO (live)
   input  logic         status_tripped_i,       // STATUS.tripped: RO (live)
   input  logic         status_locked_i,        // STATUS.locked: RO (live)
-  input  logic [2:0]   status_sector_i,        // STATUS.sector: RO (live)
-  input  logic [15:0]  carrier_count_i,        // CARRIER.count: RO (live) (not in the compact variant)
-  input  logic         carrier_up_i,           // CARRIER.up: RO (live) (not in the compact variant)
-  input  logic [15:0]  period_act_i,           // PERIOD_ACT.period: RO (live) (not in the compact variant)
-  input  logic [15:0]  cmp_a_i,                // CMP_A.cmp: RO (live) (not in the compact variant)
-  input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live) (not in the compact variant)
-  input  logic [15:0]  cmp_c_i,                // CMP_C.cmp: RO (live) (not in the compact variant)
-  output logic         dtc_en_o,               // DTC.en: RW (not in the compact variant)
-  output logic [2:0]   dtc_isign_o             // DTC.isign: RW (not in the compact variant)
+  input  logic [2:0]   status_sector_i,        // STATUS.sector: RO (live) (not if Trim)
+  input  logic [15:0]  carrier_count_i,        // CARRIER.count: RO (live) (not if Trim)
+  input  logic         carrier_up_i,           // CARRIER.up: RO (live) (not if Trim)
+  input  logic [15:0]  period_act_i,           // PERIOD_ACT.period: RO (live) (not if Trim)
+  input  logic [15:0]  cmp_a_i,                // CMP_A.cmp: RO (live) (not if Trim)
+  input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live) (not if Trim)
+  input  logic [15:0]  cmp_c_i,                // CMP_C.cmp: RO (live) (not if Trim)
+  output logic         dtc_en_o,               // DTC.en: RW (needs dtc)
+  output logic [2:0]   dtc_isign_o             // DTC.isign: RW (needs dtc)
 );
 
   if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
@@ -229,14 +234,13 @@ module svpwm_regs #(
   end
 
   // ---- storage: the value each field takes when its register is written -------------------------
-  // fields of both variants
+  // fields of every build
   logic         ctrl_en_d, ctrl_en_q, ctrl_en_wr;
   logic         ctrl_trip_cbc_d, ctrl_trip_cbc_q, ctrl_trip_cbc_wr;
   logic         ctrl_safe_lo_d, ctrl_safe_lo_q, ctrl_safe_lo_wr;
   logic [1:0]   ctrl_pol_d, ctrl_pol_q, ctrl_pol_wr;
   logic         ctrl_lock_d, ctrl_lock_q, ctrl_lock_wr;
   logic         ctrl_fault_clear_d, ctrl_fault_clear_q, ctrl_fault_clear_wr;
-  logic [23:0]  freq_d, freq_q, freq_wr;
   logic [15:0]  m_d, m_q, m_wr;
   logic [15:0]  period_d, period_q, period_wr;
   logic [9:0]   dt_dt_d, dt_dt_q, dt_dt_wr;
@@ -246,7 +250,6 @@ module svpwm_regs #(
   assign ctrl_pol_wr = be_i[0] ? wdata_i[5:4] : ctrl_pol_q[1:0];
   assign ctrl_lock_wr = ctrl_lock_q | (be_i[0] ? wdata_i[6] : 1'h0);
   assign ctrl_fault_clear_wr = be_i[0] ? wdata_i[7] : 1'h0;
-  assign freq_wr = {(be_i[2] ? wdata_i[23:16] : freq_q[23:16]), (be_i[1] ? wdata_i[15:8] : freq_q[15:8]), (be_i[0] ? wdata_i[7:0] : freq_q[7:0])};
   assign m_wr = {(be_i[1] ? wdata_i[15:8] : m_q[15:8]), (be_i[0] ? wdata_i[7:0] : m_q[7:0])};
   assign period_wr = {(be_i[1] ? wdata_i[15:8] : period_q[15:8]), (be_i[0] ? wdata_i[7:0] : period_q[7:0])};
   assign dt_dt_wr = {(be_i[1] ? wdata_i[9:8] : dt_dt_q[9:8]), (be_i[0] ? wdata_i[7:0] : dt_dt_q[7:0])};
@@ -258,7 +261,6 @@ module svpwm_regs #(
     ctrl_pol_d = ctrl_pol_q;
     ctrl_lock_d = ctrl_lock_q;
     ctrl_fault_clear_d = 1'h0;
-    freq_d = freq_q;
     m_d = m_q;
     period_d = period_q;
     dt_dt_d = dt_dt_q;
@@ -269,9 +271,6 @@ module svpwm_regs #(
       ctrl_pol_d = ctrl_pol_wr;
       ctrl_lock_d = ctrl_lock_wr;
       ctrl_fault_clear_d = ctrl_fault_clear_wr;
-    end
-    if (wr && sel[SelFreq]) begin
-      freq_d = freq_wr;
     end
     if (wr && sel[SelM]) begin
       m_d = m_wr;
@@ -292,7 +291,6 @@ module svpwm_regs #(
       ctrl_pol_q <= GatePol;
       ctrl_lock_q <= 1'h0;
       ctrl_fault_clear_q <= 1'h0;
-      freq_q <= 24'h0;
       m_q <= 16'h0;
       period_q <= 16'h600;
       dt_dt_q <= 10'h0;
@@ -303,111 +301,272 @@ module svpwm_regs #(
       ctrl_pol_q <= ctrl_pol_d;
       ctrl_lock_q <= ctrl_lock_d;
       ctrl_fault_clear_q <= ctrl_fault_clear_d;
-      freq_q <= freq_d;
       m_q <= m_d;
       period_q <= period_d;
       dt_dt_q <= dt_dt_d;
     end
   end
 
-  // fields of the full variant only: no storage in the compact variant (constant 0 there)
+  // fields of the builds with sync: no storage in the others (constant 0)
   logic         ctrl_sync_en_q;
-  logic [2:0]   ctrl_mode_q;
-  logic [1:0]   ctrl_upd_q;
-  logic [1:0]   ctrl_dpwm_q;
-  logic         ctrl_om_q;
-  logic         ctrl_vsc_off_q;
-  logic [1:0]   ctrl_adc_trig_q;
-  logic [15:0]  theta_q;
-  logic [15:0]  v1_q;
-  logic [15:0]  v2_q;
-  logic [15:0]  vf_boost_q;
-  logic [15:0]  vf_slope_q;
-  logic [15:0]  vf_mmax_q;
-  logic [9:0]   dt_dtf_q;
-  logic         dt_dtf_en_q;
-  logic [9:0]   mp_q;
-  logic [7:0]   presc_q;
-  logic         dtc_en_q;
-  logic [2:0]   dtc_isign_q;
-  if (!Compact) begin : gen_full
+  if (Features[svpwm_pkg::FeatSync]) begin : gen_sync
     logic         ctrl_sync_en_d, ctrl_sync_en_wr;
-    logic [2:0]   ctrl_mode_d, ctrl_mode_wr;
-    logic [1:0]   ctrl_upd_d, ctrl_upd_wr;
-    logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_wr;
-    logic         ctrl_om_d, ctrl_om_wr;
-    logic         ctrl_vsc_off_d, ctrl_vsc_off_wr;
-    logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_wr;
-    logic [15:0]  theta_d, theta_wr;
-    logic [15:0]  v1_d, v1_wr;
-    logic [15:0]  v2_d, v2_wr;
-    logic [15:0]  vf_boost_d, vf_boost_wr;
-    logic [15:0]  vf_slope_d, vf_slope_wr;
-    logic [15:0]  vf_mmax_d, vf_mmax_wr;
-    logic [9:0]   dt_dtf_d, dt_dtf_wr;
-    logic         dt_dtf_en_d, dt_dtf_en_wr;
-    logic [9:0]   mp_d, mp_wr;
-    logic [7:0]   presc_d, presc_wr;
-    logic         dtc_en_d, dtc_en_wr;
-    logic [2:0]   dtc_isign_d, dtc_isign_wr;
     assign ctrl_sync_en_wr = be_i[0] ? wdata_i[1] : ctrl_sync_en_q;
-    assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
-    assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
-    assign ctrl_dpwm_wr = be_i[2] ? wdata_i[17:16] : ctrl_dpwm_q[1:0];
-    assign ctrl_om_wr = be_i[2] ? wdata_i[18] : ctrl_om_q;
-    assign ctrl_vsc_off_wr = be_i[2] ? wdata_i[19] : ctrl_vsc_off_q;
-    assign ctrl_adc_trig_wr = be_i[2] ? wdata_i[21:20] : ctrl_adc_trig_q[1:0];
-    assign theta_wr = {(be_i[1] ? wdata_i[15:8] : theta_q[15:8]), (be_i[0] ? wdata_i[7:0] : theta_q[7:0])};
-    assign v1_wr = {(be_i[1] ? wdata_i[15:8] : v1_q[15:8]), (be_i[0] ? wdata_i[7:0] : v1_q[7:0])};
-    assign v2_wr = {(be_i[1] ? wdata_i[15:8] : v2_q[15:8]), (be_i[0] ? wdata_i[7:0] : v2_q[7:0])};
-    assign vf_boost_wr = {(be_i[1] ? wdata_i[15:8] : vf_boost_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_boost_q[7:0])};
-    assign vf_slope_wr = {(be_i[1] ? wdata_i[15:8] : vf_slope_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_slope_q[7:0])};
-    assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
-    assign dt_dtf_wr = {(be_i[3] ? wdata_i[25:24] : dt_dtf_q[9:8]), (be_i[2] ? wdata_i[23:16] : dt_dtf_q[7:0])};
-    assign dt_dtf_en_wr = be_i[3] ? wdata_i[31] : dt_dtf_en_q;
-    assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
-    assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
-    assign dtc_en_wr = be_i[0] ? wdata_i[0] : dtc_en_q;
-    assign dtc_isign_wr = be_i[0] ? wdata_i[6:4] : dtc_isign_q[2:0];
 
     always_comb begin
       ctrl_sync_en_d = ctrl_sync_en_q;
-      ctrl_mode_d = ctrl_mode_q;
-      ctrl_upd_d = ctrl_upd_q;
-      ctrl_dpwm_d = ctrl_dpwm_q;
-      ctrl_om_d = ctrl_om_q;
-      ctrl_vsc_off_d = ctrl_vsc_off_q;
-      ctrl_adc_trig_d = ctrl_adc_trig_q;
-      theta_d = theta_q;
-      v1_d = v1_q;
-      v2_d = v2_q;
-      vf_boost_d = vf_boost_q;
-      vf_slope_d = vf_slope_q;
-      vf_mmax_d = vf_mmax_q;
-      dt_dtf_d = dt_dtf_q;
-      dt_dtf_en_d = dt_dtf_en_q;
-      mp_d = mp_q;
-      presc_d = presc_q;
-      dtc_en_d = dtc_en_q;
-      dtc_isign_d = dtc_isign_q;
       if (wr && sel[SelCtrl]) begin
         ctrl_sync_en_d = ctrl_sync_en_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_sync_en_q <= 1'h0;
+      end else begin
+        ctrl_sync_en_q <= ctrl_sync_en_d;
+      end
+    end
+  end else begin : gen_no_sync
+    assign ctrl_sync_en_q = 1'h0;
+  end
+
+  // fields of the builds with Trim = 0: no storage in the others (constant 0)
+  logic [2:0]   ctrl_mode_q;
+  logic [1:0]   ctrl_adc_trig_q;
+  logic [9:0]   mp_q;
+  if (!Trim) begin : gen_untrimmed
+    logic [2:0]   ctrl_mode_d, ctrl_mode_wr;
+    logic [1:0]   ctrl_adc_trig_d, ctrl_adc_trig_wr;
+    logic [9:0]   mp_d, mp_wr;
+    assign ctrl_mode_wr = be_i[1] ? wdata_i[10:8] : ctrl_mode_q[2:0];
+    assign ctrl_adc_trig_wr = be_i[2] ? wdata_i[21:20] : ctrl_adc_trig_q[1:0];
+    assign mp_wr = {(be_i[1] ? wdata_i[9:8] : mp_q[9:8]), (be_i[0] ? wdata_i[7:0] : mp_q[7:0])};
+
+    always_comb begin
+      ctrl_mode_d = ctrl_mode_q;
+      ctrl_adc_trig_d = ctrl_adc_trig_q;
+      mp_d = mp_q;
+      if (wr && sel[SelCtrl]) begin
         ctrl_mode_d = ctrl_mode_wr;
-        ctrl_upd_d = ctrl_upd_wr;
-        ctrl_dpwm_d = ctrl_dpwm_wr;
-        ctrl_om_d = ctrl_om_wr;
-        ctrl_vsc_off_d = ctrl_vsc_off_wr;
         ctrl_adc_trig_d = ctrl_adc_trig_wr;
       end
+      if (wr && sel[SelMp]) begin
+        mp_d = mp_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_mode_q <= 3'h0;
+        ctrl_adc_trig_q <= 2'h0;
+        mp_q <= 10'h0;
+      end else begin
+        ctrl_mode_q <= ctrl_mode_d;
+        ctrl_adc_trig_q <= ctrl_adc_trig_d;
+        mp_q <= mp_d;
+      end
+    end
+  end else begin : gen_no_untrimmed
+    assign ctrl_mode_q = 3'h0;
+    assign ctrl_adc_trig_q = 2'h0;
+    assign mp_q = 10'h0;
+  end
+
+  // fields of the builds with upd: no storage in the others (constant 0)
+  logic [1:0]   ctrl_upd_q;
+  if (Features[svpwm_pkg::FeatUpd]) begin : gen_upd
+    logic [1:0]   ctrl_upd_d, ctrl_upd_wr;
+    assign ctrl_upd_wr = be_i[1] ? wdata_i[13:12] : ctrl_upd_q[1:0];
+
+    always_comb begin
+      ctrl_upd_d = ctrl_upd_q;
+      if (wr && sel[SelCtrl]) begin
+        ctrl_upd_d = ctrl_upd_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_upd_q <= 2'h0;
+      end else begin
+        ctrl_upd_q <= ctrl_upd_d;
+      end
+    end
+  end else begin : gen_no_upd
+    assign ctrl_upd_q = 2'h0;
+  end
+
+  // fields of the builds with dpwm: no storage in the others (constant 0)
+  logic [1:0]   ctrl_dpwm_q;
+  if (Features[svpwm_pkg::FeatDpwm]) begin : gen_dpwm
+    logic [1:0]   ctrl_dpwm_d, ctrl_dpwm_wr;
+    assign ctrl_dpwm_wr = be_i[2] ? wdata_i[17:16] : ctrl_dpwm_q[1:0];
+
+    always_comb begin
+      ctrl_dpwm_d = ctrl_dpwm_q;
+      if (wr && sel[SelCtrl]) begin
+        ctrl_dpwm_d = ctrl_dpwm_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_dpwm_q <= 2'h0;
+      end else begin
+        ctrl_dpwm_q <= ctrl_dpwm_d;
+      end
+    end
+  end else begin : gen_no_dpwm
+    assign ctrl_dpwm_q = 2'h0;
+  end
+
+  // fields of the builds with sixstep: no storage in the others (constant 0)
+  logic         ctrl_om_q;
+  if (Features[svpwm_pkg::FeatSixstep]) begin : gen_sixstep
+    logic         ctrl_om_d, ctrl_om_wr;
+    assign ctrl_om_wr = be_i[2] ? wdata_i[18] : ctrl_om_q;
+
+    always_comb begin
+      ctrl_om_d = ctrl_om_q;
+      if (wr && sel[SelCtrl]) begin
+        ctrl_om_d = ctrl_om_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_om_q <= 1'h0;
+      end else begin
+        ctrl_om_q <= ctrl_om_d;
+      end
+    end
+  end else begin : gen_no_sixstep
+    assign ctrl_om_q = 1'h0;
+  end
+
+  // fields of the builds with carry: no storage in the others (constant 0)
+  logic         ctrl_vsc_off_q;
+  if (Features[svpwm_pkg::FeatCarry]) begin : gen_carry
+    logic         ctrl_vsc_off_d, ctrl_vsc_off_wr;
+    assign ctrl_vsc_off_wr = be_i[2] ? wdata_i[19] : ctrl_vsc_off_q;
+
+    always_comb begin
+      ctrl_vsc_off_d = ctrl_vsc_off_q;
+      if (wr && sel[SelCtrl]) begin
+        ctrl_vsc_off_d = ctrl_vsc_off_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        ctrl_vsc_off_q <= 1'h0;
+      end else begin
+        ctrl_vsc_off_q <= ctrl_vsc_off_d;
+      end
+    end
+  end else begin : gen_no_carry
+    assign ctrl_vsc_off_q = 1'h0;
+  end
+
+  // fields of the builds with freq or vf: no storage in the others (constant 0)
+  logic [23:0]  freq_q;
+  if (Features[svpwm_pkg::FeatFreq] || Features[svpwm_pkg::FeatVf]) begin : gen_freq_vf
+    logic [23:0]  freq_d, freq_wr;
+    assign freq_wr = {(be_i[2] ? wdata_i[23:16] : freq_q[23:16]), (be_i[1] ? wdata_i[15:8] : freq_q[15:8]), (be_i[0] ? wdata_i[7:0] : freq_q[7:0])};
+
+    always_comb begin
+      freq_d = freq_q;
+      if (wr && sel[SelFreq]) begin
+        freq_d = freq_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        freq_q <= 24'h0;
+      end else begin
+        freq_q <= freq_d;
+      end
+    end
+  end else begin : gen_no_freq_vf
+    assign freq_q = 24'h0;
+  end
+
+  // fields of the builds with polar or dq: no storage in the others (constant 0)
+  logic [15:0]  theta_q;
+  if (Features[svpwm_pkg::FeatPolar] || Features[svpwm_pkg::FeatDq]) begin : gen_polar_dq
+    logic [15:0]  theta_d, theta_wr;
+    assign theta_wr = {(be_i[1] ? wdata_i[15:8] : theta_q[15:8]), (be_i[0] ? wdata_i[7:0] : theta_q[7:0])};
+
+    always_comb begin
+      theta_d = theta_q;
       if (wr && sel[SelTheta]) begin
         theta_d = theta_wr;
       end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        theta_q <= 16'h0;
+      end else begin
+        theta_q <= theta_d;
+      end
+    end
+  end else begin : gen_no_polar_dq
+    assign theta_q = 16'h0;
+  end
+
+  // fields of the builds with ab or dq: no storage in the others (constant 0)
+  logic [15:0]  v1_q;
+  logic [15:0]  v2_q;
+  if (Features[svpwm_pkg::FeatAb] || Features[svpwm_pkg::FeatDq]) begin : gen_ab_dq
+    logic [15:0]  v1_d, v1_wr;
+    logic [15:0]  v2_d, v2_wr;
+    assign v1_wr = {(be_i[1] ? wdata_i[15:8] : v1_q[15:8]), (be_i[0] ? wdata_i[7:0] : v1_q[7:0])};
+    assign v2_wr = {(be_i[1] ? wdata_i[15:8] : v2_q[15:8]), (be_i[0] ? wdata_i[7:0] : v2_q[7:0])};
+
+    always_comb begin
+      v1_d = v1_q;
+      v2_d = v2_q;
       if (wr && sel[SelV1]) begin
         v1_d = v1_wr;
       end
       if (wr && sel[SelV2]) begin
         v2_d = v2_wr;
       end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        v1_q <= 16'h0;
+        v2_q <= 16'h0;
+      end else begin
+        v1_q <= v1_d;
+        v2_q <= v2_d;
+      end
+    end
+  end else begin : gen_no_ab_dq
+    assign v1_q = 16'h0;
+    assign v2_q = 16'h0;
+  end
+
+  // fields of the builds with vf: no storage in the others (constant 0)
+  logic [15:0]  vf_boost_q;
+  logic [15:0]  vf_slope_q;
+  logic [15:0]  vf_mmax_q;
+  if (Features[svpwm_pkg::FeatVf]) begin : gen_vf
+    logic [15:0]  vf_boost_d, vf_boost_wr;
+    logic [15:0]  vf_slope_d, vf_slope_wr;
+    logic [15:0]  vf_mmax_d, vf_mmax_wr;
+    assign vf_boost_wr = {(be_i[1] ? wdata_i[15:8] : vf_boost_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_boost_q[7:0])};
+    assign vf_slope_wr = {(be_i[1] ? wdata_i[15:8] : vf_slope_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_slope_q[7:0])};
+    assign vf_mmax_wr = {(be_i[1] ? wdata_i[15:8] : vf_mmax_q[15:8]), (be_i[0] ? wdata_i[7:0] : vf_mmax_q[7:0])};
+
+    always_comb begin
+      vf_boost_d = vf_boost_q;
+      vf_slope_d = vf_slope_q;
+      vf_mmax_d = vf_mmax_q;
       if (wr && sel[SelVfBoost]) begin
         vf_boost_d = vf_boost_wr;
       end
@@ -417,16 +576,93 @@ module svpwm_regs #(
       if (wr && sel[SelVfMmax]) begin
         vf_mmax_d = vf_mmax_wr;
       end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        vf_boost_q <= 16'h0;
+        vf_slope_q <= 16'h0;
+        vf_mmax_q <= 16'h0;
+      end else begin
+        vf_boost_q <= vf_boost_d;
+        vf_slope_q <= vf_slope_d;
+        vf_mmax_q <= vf_mmax_d;
+      end
+    end
+  end else begin : gen_no_vf
+    assign vf_boost_q = 16'h0;
+    assign vf_slope_q = 16'h0;
+    assign vf_mmax_q = 16'h0;
+  end
+
+  // fields of the builds with dtf: no storage in the others (constant 0)
+  logic [9:0]   dt_dtf_q;
+  logic         dt_dtf_en_q;
+  if (Features[svpwm_pkg::FeatDtf]) begin : gen_dtf
+    logic [9:0]   dt_dtf_d, dt_dtf_wr;
+    logic         dt_dtf_en_d, dt_dtf_en_wr;
+    assign dt_dtf_wr = {(be_i[3] ? wdata_i[25:24] : dt_dtf_q[9:8]), (be_i[2] ? wdata_i[23:16] : dt_dtf_q[7:0])};
+    assign dt_dtf_en_wr = be_i[3] ? wdata_i[31] : dt_dtf_en_q;
+
+    always_comb begin
+      dt_dtf_d = dt_dtf_q;
+      dt_dtf_en_d = dt_dtf_en_q;
       if (wr && sel[SelDt]) begin
         dt_dtf_d = dt_dtf_wr;
         dt_dtf_en_d = dt_dtf_en_wr;
       end
-      if (wr && sel[SelMp]) begin
-        mp_d = mp_wr;
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        dt_dtf_q <= 10'h0;
+        dt_dtf_en_q <= 1'h0;
+      end else begin
+        dt_dtf_q <= dt_dtf_d;
+        dt_dtf_en_q <= dt_dtf_en_d;
       end
+    end
+  end else begin : gen_no_dtf
+    assign dt_dtf_q = 10'h0;
+    assign dt_dtf_en_q = 1'h0;
+  end
+
+  // fields of the builds with presc: no storage in the others (constant 0)
+  logic [7:0]   presc_q;
+  if (Features[svpwm_pkg::FeatPresc]) begin : gen_presc
+    logic [7:0]   presc_d, presc_wr;
+    assign presc_wr = be_i[0] ? wdata_i[7:0] : presc_q[7:0];
+
+    always_comb begin
+      presc_d = presc_q;
       if (wr && sel[SelPresc]) begin
         presc_d = presc_wr;
       end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        presc_q <= 8'h0;
+      end else begin
+        presc_q <= presc_d;
+      end
+    end
+  end else begin : gen_no_presc
+    assign presc_q = 8'h0;
+  end
+
+  // fields of the builds with dtc: no storage in the others (constant 0)
+  logic         dtc_en_q;
+  logic [2:0]   dtc_isign_q;
+  if (Features[svpwm_pkg::FeatDtc]) begin : gen_dtc
+    logic         dtc_en_d, dtc_en_wr;
+    logic [2:0]   dtc_isign_d, dtc_isign_wr;
+    assign dtc_en_wr = be_i[0] ? wdata_i[0] : dtc_en_q;
+    assign dtc_isign_wr = be_i[0] ? wdata_i[6:4] : dtc_isign_q[2:0];
+
+    always_comb begin
+      dtc_en_d = dtc_en_q;
+      dtc_isign_d = dtc_isign_q;
       if (wr && sel[SelDtc]) begin
         dtc_en_d = dtc_en_wr;
         dtc_isign_d = dtc_isign_wr;
@@ -435,77 +671,23 @@ module svpwm_regs #(
 
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) begin
-        ctrl_sync_en_q <= 1'h0;
-        ctrl_mode_q <= 3'h0;
-        ctrl_upd_q <= 2'h0;
-        ctrl_dpwm_q <= 2'h0;
-        ctrl_om_q <= 1'h0;
-        ctrl_vsc_off_q <= 1'h0;
-        ctrl_adc_trig_q <= 2'h0;
-        theta_q <= 16'h0;
-        v1_q <= 16'h0;
-        v2_q <= 16'h0;
-        vf_boost_q <= 16'h0;
-        vf_slope_q <= 16'h0;
-        vf_mmax_q <= 16'h0;
-        dt_dtf_q <= 10'h0;
-        dt_dtf_en_q <= 1'h0;
-        mp_q <= 10'h0;
-        presc_q <= 8'h0;
         dtc_en_q <= 1'h0;
         dtc_isign_q <= 3'h0;
       end else begin
-        ctrl_sync_en_q <= ctrl_sync_en_d;
-        ctrl_mode_q <= ctrl_mode_d;
-        ctrl_upd_q <= ctrl_upd_d;
-        ctrl_dpwm_q <= ctrl_dpwm_d;
-        ctrl_om_q <= ctrl_om_d;
-        ctrl_vsc_off_q <= ctrl_vsc_off_d;
-        ctrl_adc_trig_q <= ctrl_adc_trig_d;
-        theta_q <= theta_d;
-        v1_q <= v1_d;
-        v2_q <= v2_d;
-        vf_boost_q <= vf_boost_d;
-        vf_slope_q <= vf_slope_d;
-        vf_mmax_q <= vf_mmax_d;
-        dt_dtf_q <= dt_dtf_d;
-        dt_dtf_en_q <= dt_dtf_en_d;
-        mp_q <= mp_d;
-        presc_q <= presc_d;
         dtc_en_q <= dtc_en_d;
         dtc_isign_q <= dtc_isign_d;
       end
     end
-  end else begin : gen_compact
-    assign ctrl_sync_en_q = 1'h0;
-    assign ctrl_mode_q = 3'h0;
-    assign ctrl_upd_q = 2'h0;
-    assign ctrl_dpwm_q = 2'h0;
-    assign ctrl_om_q = 1'h0;
-    assign ctrl_vsc_off_q = 1'h0;
-    assign ctrl_adc_trig_q = 2'h0;
-    assign theta_q = 16'h0;
-    assign v1_q = 16'h0;
-    assign v2_q = 16'h0;
-    assign vf_boost_q = 16'h0;
-    assign vf_slope_q = 16'h0;
-    assign vf_mmax_q = 16'h0;
-    assign dt_dtf_q = 10'h0;
-    assign dt_dtf_en_q = 1'h0;
-    assign mp_q = 10'h0;
-    assign presc_q = 8'h0;
+  end else begin : gen_no_dtc
     assign dtc_en_q = 1'h0;
     assign dtc_isign_q = 3'h0;
-    // live inputs and data bits only the full variant reads
-    logic unused_compact;
-    assign unused_compact = ^{carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i, wdata_i[25:24], wdata_i[31], be_i[3]};
   end
 
   // ---- read data: the word of each register, registered, held until the next read ----------
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h2, 16'h4};
+  assign rd_version = {16'h3, 16'h0};
   logic [31:0] rd_config;
   assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
@@ -515,43 +697,43 @@ module svpwm_regs #(
   logic [31:0] rd_m;
   assign rd_m = {16'h0, m_q};
   logic [31:0] rd_theta;
-  assign rd_theta = Compact ? 32'h0 : {16'h0, theta_q};
+  assign rd_theta = {16'h0, theta_q};
   logic [31:0] rd_v1;
-  assign rd_v1 = Compact ? 32'h0 : {16'h0, v1_q};
+  assign rd_v1 = {16'h0, v1_q};
   logic [31:0] rd_v2;
-  assign rd_v2 = Compact ? 32'h0 : {16'h0, v2_q};
+  assign rd_v2 = {16'h0, v2_q};
   logic [31:0] rd_vf_boost;
-  assign rd_vf_boost = Compact ? 32'h0 : {16'h0, vf_boost_q};
+  assign rd_vf_boost = {16'h0, vf_boost_q};
   logic [31:0] rd_vf_slope;
-  assign rd_vf_slope = Compact ? 32'h0 : {16'h0, vf_slope_q};
+  assign rd_vf_slope = {16'h0, vf_slope_q};
   logic [31:0] rd_vf_mmax;
-  assign rd_vf_mmax = Compact ? 32'h0 : {16'h0, vf_mmax_q};
+  assign rd_vf_mmax = {16'h0, vf_mmax_q};
   logic [31:0] rd_period;
   assign rd_period = {16'h0, period_q};
   logic [31:0] rd_dt;
   assign rd_dt = {dt_dtf_en_q, 5'h0, dt_dtf_q, 6'h0, dt_dt_q};
   logic [31:0] rd_mp;
-  assign rd_mp = Compact ? 32'h0 : {22'h0, mp_q};
+  assign rd_mp = {22'h0, mp_q};
   logic [31:0] rd_presc;
-  assign rd_presc = Compact ? 32'h0 : {24'h0, presc_q};
+  assign rd_presc = {24'h0, presc_q};
   logic [31:0] rd_status;
-  assign rd_status = {21'h0, status_sector_i, status_locked_i, status_tripped_i, status_fault_i, status_freq_clamp_i, status_period_clamp_i, status_cfg_err_i, status_sat_i, status_running_i};
+  assign rd_status = {21'h0, (!Trim ? status_sector_i : 3'h0), status_locked_i, status_tripped_i, status_fault_i, status_freq_clamp_i, status_period_clamp_i, status_cfg_err_i, status_sat_i, status_running_i};
   logic [31:0] rd_carrier;
-  assign rd_carrier = Compact ? 32'h0 : {15'h0, carrier_up_i, carrier_count_i};
+  assign rd_carrier = {15'h0, (!Trim ? carrier_up_i : 1'h0), (!Trim ? carrier_count_i : 16'h0)};
   logic [31:0] rd_period_act;
-  assign rd_period_act = Compact ? 32'h0 : {16'h0, period_act_i};
+  assign rd_period_act = {16'h0, (!Trim ? period_act_i : 16'h0)};
   logic [31:0] rd_cmp_a;
-  assign rd_cmp_a = Compact ? 32'h0 : {16'h0, cmp_a_i};
+  assign rd_cmp_a = {16'h0, (!Trim ? cmp_a_i : 16'h0)};
   logic [31:0] rd_cmp_b;
-  assign rd_cmp_b = Compact ? 32'h0 : {16'h0, cmp_b_i};
+  assign rd_cmp_b = {16'h0, (!Trim ? cmp_b_i : 16'h0)};
   logic [31:0] rd_cmp_c;
-  assign rd_cmp_c = Compact ? 32'h0 : {16'h0, cmp_c_i};
+  assign rd_cmp_c = {16'h0, (!Trim ? cmp_c_i : 16'h0)};
   logic [31:0] rd_clk_hz;
   assign rd_clk_hz = {32'(ClkHz)};
   logic [31:0] rd_features;
-  assign rd_features = {31'h0, Compact};
+  assign rd_features = {Trim, 15'h0, Features[15:0]};
   logic [31:0] rd_dtc;
-  assign rd_dtc = Compact ? 32'h0 : {25'h0, dtc_isign_q, 3'h0, dtc_en_q};
+  assign rd_dtc = {25'h0, dtc_isign_q, 3'h0, dtc_en_q};
 
   // the selected word (0 where no register is selected): AND-OR of the one-hot select as a tree
   // of 4-input LUTs, kept so that synthesis does not chain it: a pair of registers (select and
@@ -639,6 +821,9 @@ module svpwm_regs #(
   // data bits no writable field uses; the byte offset within a word
   logic unused_bits;
   assign unused_bits = ^{wdata_i[30:26], addr_i[1:0]};
+  // live inputs, data bits and byte lanes only builds with some feature (or without Trim) read
+  logic unused_cond;
+  assign unused_cond = ^{status_sector_i, carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i, wdata_i[25:16], wdata_i[31], be_i[2], be_i[3]};
 
 endmodule
 

@@ -8,9 +8,10 @@ model/svpwm_model/regmap.py). Protocol (fpga/ice40/README.md, uart_reg_bridge.sv
   read   'R' addr chk               -> d0 d1 d2 d3 chk
   a frame with a bad checksum       -> 'N'
 Physical units use the core clock the board states in CLK_HZ (--clk-hz when it reads 0) and the
-widths in CONFIG; values out of range are refused, never clamped. A board whose FEATURES.compact reads 1
-has the compact variant (FREQ mode, continuous SVPWM, valley updates, no MP; e.g. the iCEstick): writes to the
-registers and fields it does not have (docs/registers.md, column compact) are refused, nothing is written.
+widths in CONFIG; values out of range are refused, never clamped. FEATURES says what the board's build has
+(FEATURES.features: the feature mask, model/svpwm_model/config.py; FEATURES.trim: the iCEstick's board cut):
+a command or write that needs a feature the board lacks, or a register the cut removes (docs/registers.md,
+columns features and trim), is refused with a message naming it, and nothing is written.
 
 Examples:
   svpwmctl.py -p /dev/ttyUSB1 status
@@ -32,23 +33,32 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "model"))
 from svpwm_model import regmap as R  # noqa: E402  (generated from rdl/svpwm.rdl)
 from svpwm_model import fixed  # noqa: E402  (the cores' latencies: from the calculator's program)
+from svpwm_model import config  # noqa: E402  (the feature names and the named configurations)
 
 CMD_WRITE, CMD_READ, RSP_ACK, RSP_NAK = 0x57, 0x52, 0x4B, 0x4E
 ID_VALUE = R.ID.reset
 MAP_MAJOR = R.VERSION.field("major").reset
-MIN_PERIOD = fixed.MIN_PERIOD                  # MinPeriod of the board designs (svpwm_ice40_sys default)
-MIN_PERIOD_COMPACT = fixed.LITE_MIN_PERIOD     # the same with the compact core (e.g. the iCEstick)
+MIN_PERIOD = fixed.MIN_PERIOD                  # MinPeriod of the full build (svpwm_ice40_sys default)
 # CTRL enumerations (docs/registers.md, CTRL.mode / .dpwm / .upd)
 MODES = {"freq": 0, "vf": 1, "polar": 2, "alphabeta": 3, "dq": 4}
 DPWM = {"svpwm": 0, "dpwmmin": 1, "dpwmmax": 2, "dpwm1": 3}
 UPD = {"valley": 0, "peak": 1, "both": 2}
 OM = {"clamp": 0, "sixstep": 1}
-COMPACT_TEXT = "compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start, no MP"
 
 
-def absent_mask(reg: R.Register) -> int:
-    """Bits of `reg` that the compact variant does not have (all of them for an absent register)."""
-    return reg.mask() & ~(sum(f.mask for f in reg.fields if f.compact) if reg.compact else 0)
+def min_period(features: int) -> int:
+    """MinPeriod of a board with this build (svpwm_ice40_sys default: svpwm_pkg::min_period(Features))."""
+    try:
+        return fixed.latencies(features)["MIN_PERIOD"]
+    except (KeyError, ValueError):     # a mask without a generated program: the full build's
+        return MIN_PERIOD
+
+
+def build_text(features: int, trim: bool) -> str:
+    name = config.config_name(features)
+    return (f"build {name or 'custom'} (FEATURES.features 0x{features:04x}: {', '.join(config.names(features)) or '-'})"
+            + ("; board cut (FEATURES.trim): no MP, CTRL.mode, CTRL.adc_trig, STATUS.sector, CARRIER, PERIOD_ACT, "
+               "CMP_*" if trim else ""))
 
 
 class ProtocolError(RuntimeError):
@@ -227,7 +237,7 @@ class Board:
         self.clk_hz_override = clk_hz
         self.name = name
         self._cfg: Config | None = None
-        self._compact: bool | None = None
+        self._features: tuple[int, bool] | None = None
 
     def _xfer(self, frame: bytes, n: int) -> bytes:
         if hasattr(self.port, "reset_input_buffer"):
@@ -248,24 +258,47 @@ class Board:
     def read_reg(self, reg: R.Register) -> dict[str, int]:
         return reg.decode(self.read(reg.addr))
 
-    def compact(self) -> bool:
-        """The board has the compact variant (FEATURES.compact; maps before 2.2 read 0 there: full)."""
-        if self._compact is None:
-            self._compact = bool(self.read_reg(R.FEATURES)["compact"])
-        return self._compact
+    def features(self) -> tuple[int, bool]:
+        """(feature mask, board cut) of the board's build: FEATURES.features, FEATURES.trim."""
+        if self._features is None:
+            self.config()                                  # map 3.x: the FEATURES layout read here
+            f = self.read_reg(R.FEATURES)
+            self._features = (f["features"], bool(f["trim"]))
+        return self._features
+
+    def map(self) -> tuple[R.Register, ...]:
+        return R.variant(*self.features())
+
+    def _refuse(self, what: str, needs: tuple[str, ...] | None) -> None:
+        feats, trim = self.features()
+        why = f"no {' or '.join(needs)}" if needs else "board cut: FEATURES.trim = 1"
+        word = R.FEATURES.encode(features=feats, trim=int(trim))
+        raise ValueError(f"{what}: not on this board ({why}; FEATURES = 0x{word:08x}, "
+                         f"{config.config_name(feats) or 'custom'}); nothing written")
+
+    def has(self, feature: str) -> bool:
+        return config.has(self.features()[0], feature)
+
+    def need(self, what: str, *features: str) -> None:
+        """Refuse `what` unless the board has one of `features`."""
+        if not any(self.has(f) for f in features):
+            self._refuse(what, features)
 
     def check_present(self, reg: R.Register, mask: int) -> None:
         """Refuse a write of the bits `mask` of `reg` if the board does not have them."""
-        bad = mask & absent_mask(reg)
-        if bad and self.compact():
-            what = (reg.name if not reg.compact else
-                    ", ".join(f"{reg.name}.{f.name}" for f in reg.fields if f.mask & bad))
-            raise ValueError(f"{what}: not on this board ({COMPACT_TEXT}); nothing written")
+        feats, trim = self.features()
+        bad = mask & R.absent_mask(reg, feats, trim)
+        if not bad:
+            return
+        missing = [f for f in reg.fields if f.mask & bad]
+        what = (reg.name if R.absent_mask(reg, feats, trim) == reg.mask()
+                else ", ".join(f"{reg.name}.{f.name}" for f in missing))
+        needs = next((f.features for f in missing if f.features and not R.built(f, feats, False)), None)
+        self._refuse(what, needs)
 
     def write_fields(self, reg: R.Register, **values: int) -> int:
         """Read-modify-write of the named fields (range-checked); other RW fields keep their values,
-        pulse fields not named are written 0. Fields the board does not have (compact variant) are
-        refused. Returns the word written."""
+        pulse fields not named are written 0. Fields the board does not have (FEATURES) are refused. Returns the word written."""
         for name, v in values.items():
             f = reg.field(name)
             if not f.writable:
@@ -299,15 +332,15 @@ class Board:
 
     def status(self) -> dict[str, object]:
         cfg = self.config()
-        compact = self.compact()
-        v = {r.name: self.read(r.addr) for r in R.variant(compact) if r.name not in ("ID", "VERSION", "CONFIG")}
+        feats, trim = self.features()
+        v = {r.name: self.read(r.addr) for r in self.map() if r.name not in ("ID", "VERSION", "CONFIG")}
         st, ctrl = R.STATUS.decode(v["STATUS"]), R.CTRL.decode(v["CTRL"])
         freq = R.FREQ.decode(v["FREQ"])["freq"]
         dt, dtf = dead_times(R.DT.decode(v["DT"]))
         out: dict[str, object] = {k: st[k] for k in ("running", "tripped", "fault", "sat", "cfg_err",
                                                       "period_clamp", "freq_clamp", "locked", "sector")}
         out.update({
-            "variant": "compact" if compact else "full",
+            "build": config.config_name(feats) or f"0x{feats:04x}", "trim": int(trim),
             "en": ctrl["en"],
             "mode": next((k for k, x in MODES.items() if x == ctrl["mode"]), f"invalid ({ctrl['mode']})"),
             "dpwm": next(k for k, x in DPWM.items() if x == ctrl["dpwm"]),
@@ -315,10 +348,10 @@ class Board:
             "freq_hz": _fmt(cfg.freq_hz(freq), 8), "freq_word": freq,
             "m": _fmt(Fraction(v["M"], 0x8000)), "m_word": v["M"],
             "fsw_hz": _fmt(cfg.fsw_hz(v["PERIOD"]), 8) if v["PERIOD"] else "-", "period_clocks": v["PERIOD"],
-            "period_act_clocks": v.get("PERIOD_ACT", "-"),          # not in the compact variant
+            "period_act_clocks": v.get("PERIOD_ACT", "-"),          # not if trimmed
             "dt_us": _fmt(cfg.us(dt)), "dt_clocks": dt,
             "dt_fall_us": _fmt(cfg.us(dtf)), "dt_fall_clocks": dtf,                  # = dt unless DT.dtf_en
-            "mp_us": _fmt(cfg.us(v["MP"])) if "MP" in v else "-", "mp_clocks": v.get("MP", "-"),  # not compact
+            "mp_us": _fmt(cfg.us(v["MP"])) if "MP" in v else "-", "mp_clocks": v.get("MP", "-"),  # not if trimmed
             "clk_hz": cfg.clk_hz,
         })
         return out
@@ -401,7 +434,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def dead_times(dt_fields: dict[str, int]) -> tuple[int, int]:
     """(rising, falling) dead time in clocks from the decoded DT register: the falling one is DT.dtf when
-    DT.dtf_en is 1, else DT.dt (the compact variant reads dtf_en 0)."""
+    DT.dtf_en is 1, else DT.dt (a build without the feature dtf reads dtf_en 0)."""
     dt = dt_fields["dt"]
     return dt, (dt_fields["dtf"] if dt_fields.get("dtf_en") else dt)
 
@@ -411,10 +444,14 @@ def _locked_check(board: Board, what: str) -> None:
         raise ValueError(f"{what} is locked (STATUS.locked, CTRL.lock) until the board is reset")
 
 
+def min_period_of(board: Board) -> int:
+    return min_period(board.features()[0])
+
+
 def _period_check(board: Board, cfg: Config, p: int) -> None:
     top = (1 << cfg.cnt_width) - 1
     dtx, mp = max(dead_times(board.read_reg(R.DT))), board.read(R.MP.addr)
-    min_period = MIN_PERIOD_COMPACT if board.compact() else MIN_PERIOD
+    min_period = min_period_of(board)
     low = max(min_period, 2 * (dtx + mp))
     if not low <= p <= top:
         raise ValueError(f"half period {p} clocks is out of range {low} .. {top} (MinPeriod {min_period}, "
@@ -438,13 +475,15 @@ def run(args, board: Board) -> str:
         else:
             if not -(1 << 31) <= v <= 0xFFFF_FFFF:
                 raise ValueError(f"{v} does not fit 32 bits")
-            if reg is not None:      # an absent register, or ones in absent fields, on a compact board
-                board.check_present(reg, reg.mask() if not reg.compact else v & 0xFFFF_FFFF)
+            if reg is not None:      # an absent register, or ones in absent fields
+                feats, trim = board.features()
+                absent = not any(R.built(f, feats, trim) for f in reg.fields)
+                board.check_present(reg, reg.mask() if absent else v & 0xFFFF_FFFF)
             board.write(addr, v)
         return "ok"
     if c == "dump":
         lines = []
-        for r in R.variant(board.compact()):
+        for r in board.map():
             v = board.read(r.addr)
             fields = ", ".join(f"{k}={x}" for k, x in r.decode(v).items())
             lines.append(f"0x{r.addr:02x} {r.name:10} 0x{v:08x}  {fields}")
@@ -456,7 +495,7 @@ def run(args, board: Board) -> str:
                 f"clock {cfg.clk_hz} Hz{' (--clk-hz)' if not board.read(R.CLK_HZ.addr) else ''}, "
                 f"PhaseWidth {cfg.phase_width}, FreqWidth {cfg.freq_width}, CntWidth {cfg.cnt_width}, "
                 f"DtWidth {cfg.dt_width}, "
-                + (f"{COMPACT_TEXT} (FEATURES.compact)" if board.compact() else "full variant"))
+                + build_text(*board.features()))
     if c == "status":
         return "\n".join(f"{k:18} {v}" for k, v in board.status().items())
     if c == "start":
@@ -478,7 +517,14 @@ def run(args, board: Board) -> str:
                                 else "still tripped after CTRL.fault_clear")
         return "fault cleared"
     if c == "set-mode":
+        board.need(f"mode {args.mode}", args.mode if args.mode != "alphabeta" else "ab")
         vals = {"mode": MODES[args.mode]}
+        if args.dpwm and args.dpwm != "svpwm":
+            board.need(f"--dpwm {args.dpwm}", "dpwm")
+        if args.upd and args.upd != "valley":
+            board.need(f"--upd {args.upd}", "upd")
+        if args.om == "sixstep":
+            board.need("--om sixstep", "sixstep")
         if args.dpwm:
             vals["dpwm"] = DPWM[args.dpwm]
         if args.upd:
@@ -488,9 +534,11 @@ def run(args, board: Board) -> str:
         board.write_fields(R.CTRL, **vals)
         return ", ".join(f"CTRL.{k} = {v}" for k, v in vals.items())
     if c == "set-carry":
+        board.need("set-carry", "carry")
         board.write_fields(R.CTRL, vsc_off=int(args.state == "off"))
         return f"CTRL.vsc_off = {int(args.state == 'off')}"
     if c == "set-dtc":
+        board.need("set-dtc", "dtc")
         vals = {"en": int(args.state == "on")}
         if args.isign is not None:
             vals["isign"] = parse_int(args.isign)
@@ -506,6 +554,7 @@ def run(args, board: Board) -> str:
         return f"M = 0x{w:04x} (m = {_fmt(Fraction(w, 0x8000))})"
     cfg = board.config()
     if c == "set-freq":
+        board.need("set-freq", "freq", "vf")
         w = cfg.freq_word(parse_num(args.hz))
         board.write_fields(R.FREQ, freq=w)
         return f"FREQ = {w} ({_fmt(cfg.freq_hz(w), 8)} Hz)"
@@ -517,15 +566,15 @@ def run(args, board: Board) -> str:
     if c in ("set-dt", "set-mp"):
         reg, what = (R.DT, "dead time") if c == "set-dt" else (R.MP, "minimum pulse")
         fall = getattr(args, "dt_fall", None)
-        board.check_present(reg, reg.fields[0].mask)  # the compact variant has no MP
-        if fall is not None:                          # ... and no DT.dtf / dtf_en
-            board.check_present(R.DT, R.DT.field("dtf").mask | R.DT.field("dtf_en").mask)
+        board.check_present(reg, reg.fields[0].mask)  # the trimmed board has no MP
+        if fall is not None:                          # a build without dtf no DT.dtf / dtf_en
+            board.need("--dt-fall", "dtf")
         n = cfg.clocks(parse_num(args.us), what)
         nf = cfg.clocks(parse_num(fall), "falling dead time") if fall is not None else None
         _locked_check(board, what)
         period = board.read(R.PERIOD.addr)
         if reg is R.DT:
-            dtx, mp = max(n, n if nf is None else nf), board.read(R.MP.addr) if not board.compact() else 0
+            dtx, mp = max(n, n if nf is None else nf), board.read(R.MP.addr)
         else:
             dtx, mp = max(dead_times(board.read_reg(R.DT))), n
         if period < 2 * (dtx + mp):
@@ -534,10 +583,10 @@ def run(args, board: Board) -> str:
         if reg is R.MP:
             board.write_fields(R.MP, mp=n)
             return f"MP = {n} clocks ({_fmt(cfg.us(n))} us)"
-        if board.compact():                           # one dead time for both edges
+        if not board.has("dtf"):                      # one dead time for both edges
             board.write_fields(R.DT, dt=n)
             return f"DT = {n} clocks ({_fmt(cfg.us(n))} us)"
-        # the full variant: both edges written (without --dt-fall the falling one is DT, dtf_en = 0)
+        # with dtf: both edges written (without --dt-fall the falling one is DT, dtf_en = 0)
         board.write_fields(R.DT, dt=n, dtf=0 if nf is None else nf, dtf_en=int(nf is not None))
         if nf is None:
             return f"DT = {n} clocks ({_fmt(cfg.us(n))} us)"

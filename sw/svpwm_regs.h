@@ -23,11 +23,11 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x4
+#define SVPWM__VERSION__MINOR_reset 0x0
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16
-#define SVPWM__VERSION__MAJOR_reset 0x2
+#define SVPWM__VERSION__MAJOR_reset 0x3
 
 // reg - svpwm::CONFIG
 #define SVPWM__CONFIG__DT_WIDTH_bm 0xff
@@ -260,10 +260,14 @@ extern "C" {
 #define SVPWM__CLK_HZ__CLK_HZ_reset 0x0
 
 // reg - svpwm::FEATURES
-#define SVPWM__FEATURES__COMPACT_bm 0x1
-#define SVPWM__FEATURES__COMPACT_bp 0
-#define SVPWM__FEATURES__COMPACT_bw 1
-#define SVPWM__FEATURES__COMPACT_reset 0x0
+#define SVPWM__FEATURES__FEATURES_bm 0xffff
+#define SVPWM__FEATURES__FEATURES_bp 0
+#define SVPWM__FEATURES__FEATURES_bw 16
+#define SVPWM__FEATURES__FEATURES_reset 0x3fff
+#define SVPWM__FEATURES__TRIM_bm 0x80000000
+#define SVPWM__FEATURES__TRIM_bp 31
+#define SVPWM__FEATURES__TRIM_bw 1
+#define SVPWM__FEATURES__TRIM_reset 0x0
 
 // reg - svpwm::DTC
 #define SVPWM__DTC__EN_bm 0x1
@@ -315,6 +319,28 @@ static_assert(sizeof(svpwm_t) == 0x64, "Packing error");
 #define SVPWM__CTRL__MODE__POLAR 0x2
 #define SVPWM__CTRL__MODE__ALPHABETA 0x3
 #define SVPWM__CTRL__MODE__DQ 0x4
+
+// FEATURES.features: the build's features (bit i = config.FEATURES[i], svpwm_pkg::Feat*)
+#define SVPWM_FEAT_FREQ (1u << 0)
+#define SVPWM_FEAT_VF (1u << 1)
+#define SVPWM_FEAT_POLAR (1u << 2)
+#define SVPWM_FEAT_AB (1u << 3)
+#define SVPWM_FEAT_DQ (1u << 4)
+#define SVPWM_FEAT_DPWM (1u << 5)
+#define SVPWM_FEAT_SIXSTEP (1u << 6)
+#define SVPWM_FEAT_DTC (1u << 7)
+#define SVPWM_FEAT_CARRY (1u << 8)
+#define SVPWM_FEAT_DTF (1u << 9)
+#define SVPWM_FEAT_UPD (1u << 10)
+#define SVPWM_FEAT_PRESC (1u << 11)
+#define SVPWM_FEAT_SYNC (1u << 12)
+#define SVPWM_FEAT_DSP (1u << 13)
+// named configurations (svpwm_pkg::Cfg*): the FEATURES.features value of each
+#define SVPWM_CFG_FULL 0x3fffu
+#define SVPWM_CFG_FOC 0x3f9cu
+#define SVPWM_CFG_VF 0x21e3u
+#define SVPWM_CFG_MINIMAL 0x2004u
+#define SVPWM_CFG_TINY 0x0001u
 
 #ifdef __cplusplus
 }

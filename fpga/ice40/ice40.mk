@@ -22,12 +22,12 @@ ICE40_COMMON := $(sort $(wildcard $(ICE40_DIR)/common/*.sv))
 
 # Per-board parameter overrides (a board's device, top, pins and sources are in ice40flow.py: BOARDS)
 ICE40_PARAMS_icebreaker ?=
-# The iCEstick top uses the compact variant (its system fits the HX1K: 1168 / 1280 LC, fpga/ice40/README.md)
+# The iCEstick top builds the tiny configuration with the board cut Trim = 1 (what fits the HX1K, fpga/ice40/README.md)
 ICE40_PARAMS_icestick   ?=
 
 .PHONY: bitstream bitstreams bitstream-test synth-bench ice40-test prog lint-ice40
 
-# Boards `make test` builds: both (the iCEstick with the compact system, fpga/ice40/README.md)
+# Boards `make test` builds: both (the iCEstick with the tiny, trimmed system, fpga/ice40/README.md)
 ICE40_TEST_BOARDS ?= icebreaker icestick
 
 # The board system (UART bridge + svpwm_mmio) under the rules of `make lint`; the board tops need the
@@ -35,8 +35,9 @@ ICE40_TEST_BOARDS ?= icebreaker icestick
 lint: lint-ice40
 lint-ice40: $(STAMP)
 	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
-	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys -GCompact=1 $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
-	@echo "lint-ice40: clean (svpwm_ice40_sys full and Compact = 1)"
+	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys -GFeatures=1 -GTrim=1 $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
+	verilator $(LINT_FLAGS) --top-module svpwm_ice40_sys -GFeatures=$$((0x2004)) $(LINT_WAIVER) $(LINT_SRCS) $(ICE40_COMMON)
+	@echo "lint-ice40: clean (svpwm_ice40_sys full, tiny with Trim = 1 (the iCEstick), minimal)"
 
 bitstream: $(STAMP)
 	$(PY) $(ICE40_DIR)/ice40flow.py --board $(BOARD) --seed $(ICE40_SEED) \

@@ -4,6 +4,7 @@ the generated register block svpwm_regs + svpwm_core) behind a LiteX Wishbone in
 
     from svpwm_litex import SVPWM, SVPWM_BASE, add_svpwm
     add_svpwm(soc, platform.request("svpwm"), clk_hz=sys_clk_freq)     # slave "svpwm" at SVPWM_BASE
+    add_svpwm(soc, pads, clk_hz=sys_clk_freq, config="foc")               # a smaller build of the core
 
 Parameters (SVPWM):
   pads             - a record with hi (3), lo (3) gate outputs ({c, b, a}, 1 = transistor on), fault (1,
@@ -13,8 +14,12 @@ Parameters (SVPWM):
   fault_active_low - the fault pad is active low (board pins with a pull-up); the core's fault_i is
                      active high
   gate_pol         - svpwm_core GatePol / CTRL.pol reset (2 bits: hi, lo sides inverted)
-  min_period       - svpwm_core MinPeriod, default the full core's (model/svpwm_model/fixed.py MIN_PERIOD;
-                     svpwm_wb's own default, 48, is below the full core's floor and fails elaboration)
+  config           - the build: a configuration name of model/svpwm_model/config.py CONFIGS (full, foc, vf,
+                     minimal, tiny), a '+'-separated feature list or a mask (config.parse); passed as svpwm_wb's
+                     Features (svpwm_core's and the register block's: registers of a feature not built read 0,
+                     FEATURES.features tells the firmware). Default "full"
+  min_period       - svpwm_core MinPeriod, default the build's (fixed.latencies(features)["MIN_PERIOD"], the same
+                     as svpwm_pkg::min_period(Features), svpwm_wb's own default)
 Bus: 32-bit data, word addressed (LiteX); the core sees byte addresses (bus.adr << 2), AddrWidth 8, so
 the region is 256 bytes (the map, docs/registers.md, uses 0x00..0x5F; the rest reads 0). Classic cycles
 (Pipelined = 0): LiteX masters hold STB until ACK; one access every two clocks, ACK the clock after.
@@ -36,7 +41,8 @@ from litex.soc.integration.soc import SoCRegion
 REPO = Path(__file__).resolve().parents[2]
 RTL = REPO / "rtl"
 sys.path.insert(0, str(REPO / "model"))
-from svpwm_model.fixed import MIN_PERIOD  # noqa: E402
+from svpwm_model import config as svpwm_config  # noqa: E402
+from svpwm_model.fixed import latencies  # noqa: E402
 
 SVPWM_BASE = 0x9000_0000   # documented base address of the core's registers (LiteX IO region, uncached)
 SVPWM_SIZE = 0x100         # AddrWidth 8
@@ -50,7 +56,9 @@ def rtl_sources() -> list[Path]:
 
 class SVPWM(LiteXModule):
     def __init__(self, platform, pads, clk_hz: int, fault_active_low: bool = False, gate_pol: int = 0,
-                 min_period: int = MIN_PERIOD):
+                 config: str | int = "full", min_period: int | None = None):
+        self.features = svpwm_config.parse(config)     # ValueError: names the configurations and features
+        self.min_period = latencies(self.features)["MIN_PERIOD"] if min_period is None else int(min_period)
         self.bus = wishbone.Interface(data_width=32, address_width=32, addressing="word")
         self.fault = Signal()       # the core's fault_i (active high), after the pad's polarity
         self.hi = Signal(3)
@@ -70,7 +78,8 @@ class SVPWM(LiteXModule):
             p_Pipelined = Constant(0, 1),
             p_GatePol   = Constant(gate_pol, 2),
             p_ClkHz     = int(clk_hz),
-            p_MinPeriod = int(min_period),
+            p_Features  = Constant(self.features, 32),
+            p_MinPeriod = self.min_period,
             i_clk_i     = ClockSignal("sys"),
             i_rst_ni    = ~ResetSignal("sys"),
             i_wb_cyc_i  = self.bus.cyc,
@@ -105,7 +114,7 @@ class SVPWM(LiteXModule):
 
 def add_svpwm(soc, pads, clk_hz: int, origin: int = SVPWM_BASE, **kwargs) -> SVPWM:
     """Add the core to a LiteX SoC as the Wishbone slave "svpwm" at ``origin`` (SVPWM_BASE in the
-    firmware's generated/mem.h)."""
+    firmware's generated/mem.h); kwargs go to SVPWM (e.g. config="foc", the build)."""
     soc.svpwm = SVPWM(soc.platform, pads, clk_hz, **kwargs)
     soc.bus.add_slave("svpwm", soc.svpwm.bus, SoCRegion(origin=origin, size=SVPWM_SIZE, cached=False))
     return soc.svpwm

@@ -41,9 +41,9 @@ from litex.soc.integration.soc import SoCRegion  # noqa: E402
 from litex.soc.integration.soc_core import SoCCore, get_mem_data  # noqa: E402
 
 from svpwm_litex import add_svpwm  # noqa: E402
-from svpwm_model import fixed  # noqa: E402
 
 CPU_TYPE, CPU_VARIANT = "serv", "standard"
+SVPWM_CONFIG = "full"                      # the core's build (model/svpwm_model/config.py CONFIGS; add_svpwm config)
 ROM_SIZE = 0x2000           # 8 KiB of EBR (16 of the UP5K's 30 blocks; the core has 6)
 SRAM_SIZE = 0x10000         # 64 KiB (two SPRAM blocks on the UP5K)
 SYS_CLK_HZ = 24_000_000     # iCEBreaker: 12 MHz -> PLL -> 24.000 MHz (DIVQ 5); the sim states it too
@@ -71,10 +71,9 @@ class SVPWMSoC(SoCCore):
             self.spram = Up5kSPRAM(size=SRAM_SIZE)
             self.bus.add_slave("sram", self.spram.bus,
                                SoCRegion(origin=self.mem_map["sram"], size=SRAM_SIZE))
-        self.core = add_svpwm(self, svpwm_pads, clk_hz=sys_clk_freq, fault_active_low=not sim)
-        # for the firmware's range checks: the core's MinPeriod (svpwm_core default, model/svpwm_model/fixed.py)
-        self.add_constant("SVPWM_MIN_PERIOD", fixed.MIN_PERIOD)
-        self.add_constant("SVPWM_LITE_MIN_PERIOD", fixed.LITE_MIN_PERIOD)
+        self.core = add_svpwm(self, svpwm_pads, clk_hz=sys_clk_freq, fault_active_low=not sim, config=SVPWM_CONFIG)
+        # for the firmware's range checks: the core's MinPeriod (the build's svpwm_core default, fixed.py)
+        self.add_constant("SVPWM_MIN_PERIOD", self.core.min_period)
         self.add_constant("UART_POLLING", check_duplicate=False)   # the firmware polls (no printf in the ROM)
 
     def add_csr_bridge(self, name="csr", origin=None, register=False):

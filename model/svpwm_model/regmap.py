@@ -4,16 +4,20 @@
 
 Field kinds: const (RO constant), status (RO, live from the core), rw, w1s (write 1 sets, sticky
 until reset), pulse (write 1 gives a one-clock pulse, reads 0). Byte addresses, 32-bit registers.
-compact: the register / field exists in the compact variant (svpwm_regs parameter Compact = 1);
-there the others read 0 and ignore writes. variant(compact) gives the map a variant has.
+features: the register / field exists only in a build (svpwm_regs parameter Features, config.py) that
+has one of these features; trimmed: the board cut (svpwm_regs parameter Trim = 1) removes it. What a
+build lacks reads 0 and ignores writes. variant(features, trim) gives the map a build has.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from . import config
+
 DATA_WIDTH = 32
 SIZE = 0x64  # bytes; higher addresses read 0
-VARIANT_PARAM = "Compact"  # svpwm_regs parameter: 1 = compact variant
+FEATURE_PARAM = "Features"  # svpwm_regs parameter: the build's feature mask (FEATURES.features)
+TRIM_PARAM = "Trim"  # svpwm_regs parameter: 1 = the iCEstick's board cut (FEATURES.trim)
 
 
 @dataclass(frozen=True)
@@ -26,7 +30,8 @@ class Field:
     signed: bool = False
     rst_param: str | None = None  # RTL reset value is this wrapper parameter (reset = default)
     port: str | None = None  # svpwm_regs port of the field (None: constant)
-    compact: bool = False  # exists in the compact variant
+    features: tuple[str, ...] = ()  # exists only in a build with one of these (the register's incl.)
+    trimmed: bool = False  # removed by the board cut Trim = 1 (the register's mark incl.)
 
     @property
     def mask(self) -> int:
@@ -47,7 +52,8 @@ class Register:
     name: str
     addr: int
     fields: tuple[Field, ...]
-    compact: bool = False  # exists in the compact variant
+    features: tuple[str, ...] = ()  # exists only in a build with one of these
+    trimmed: bool = False  # removed by the board cut Trim = 1
 
     @property
     def reset(self) -> int:
@@ -82,120 +88,130 @@ class Register:
 
 REGISTERS: tuple[Register, ...] = (
     Register("ID", 0x00, (
-        Field("id", 0, 32, "const", 0x53565057, compact=True),
-    ), compact=True),
+        Field("id", 0, 32, "const", 0x53565057),
+    )),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x4, compact=True),
-        Field("major", 16, 16, "const", 0x2, compact=True),
-    ), compact=True),
+        Field("minor", 0, 16, "const", 0x0),
+        Field("major", 16, 16, "const", 0x3),
+    )),
     Register("CONFIG", 0x08, (
-        Field("dt_width", 0, 8, "const", 0xA, rst_param="DtWidth", compact=True),
-        Field("cnt_width", 8, 8, "const", 0x10, rst_param="CntWidth", compact=True),
-        Field("freq_width", 16, 8, "const", 0x18, rst_param="FreqWidth", compact=True),
-        Field("phase_width", 24, 8, "const", 0x22, rst_param="PhaseWidth", compact=True),
-    ), compact=True),
+        Field("dt_width", 0, 8, "const", 0xA, rst_param="DtWidth"),
+        Field("cnt_width", 8, 8, "const", 0x10, rst_param="CntWidth"),
+        Field("freq_width", 16, 8, "const", 0x18, rst_param="FreqWidth"),
+        Field("phase_width", 24, 8, "const", 0x22, rst_param="PhaseWidth"),
+    )),
     Register("CTRL", 0x0C, (
-        Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o", compact=True),
-        Field("sync_en", 1, 1, "rw", 0x0, port="ctrl_sync_en_o"),
-        Field("trip_cbc", 2, 1, "rw", 0x0, port="ctrl_trip_cbc_o", compact=True),
-        Field("safe_lo", 3, 1, "rw", 0x0, port="ctrl_safe_lo_o", compact=True),
-        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol", port="ctrl_pol_o", compact=True),
-        Field("lock", 6, 1, "w1s", 0x0, port="ctrl_lock_o", compact=True),
-        Field("fault_clear", 7, 1, "pulse", 0x0, port="ctrl_fault_clear_o", compact=True),
-        Field("mode", 8, 3, "rw", 0x0, port="ctrl_mode_o"),
-        Field("upd", 12, 2, "rw", 0x0, port="ctrl_upd_o"),
-        Field("dpwm", 16, 2, "rw", 0x0, port="ctrl_dpwm_o"),
-        Field("om", 18, 1, "rw", 0x0, port="ctrl_om_o"),
-        Field("vsc_off", 19, 1, "rw", 0x0, port="ctrl_vsc_off_o"),
-        Field("adc_trig", 20, 2, "rw", 0x0, port="ctrl_adc_trig_o"),
-    ), compact=True),
+        Field("en", 0, 1, "rw", 0x0, port="ctrl_en_o"),
+        Field("sync_en", 1, 1, "rw", 0x0, port="ctrl_sync_en_o", features=('sync',)),
+        Field("trip_cbc", 2, 1, "rw", 0x0, port="ctrl_trip_cbc_o"),
+        Field("safe_lo", 3, 1, "rw", 0x0, port="ctrl_safe_lo_o"),
+        Field("pol", 4, 2, "rw", 0x0, rst_param="GatePol", port="ctrl_pol_o"),
+        Field("lock", 6, 1, "w1s", 0x0, port="ctrl_lock_o"),
+        Field("fault_clear", 7, 1, "pulse", 0x0, port="ctrl_fault_clear_o"),
+        Field("mode", 8, 3, "rw", 0x0, port="ctrl_mode_o", trimmed=True),
+        Field("upd", 12, 2, "rw", 0x0, port="ctrl_upd_o", features=('upd',)),
+        Field("dpwm", 16, 2, "rw", 0x0, port="ctrl_dpwm_o", features=('dpwm',)),
+        Field("om", 18, 1, "rw", 0x0, port="ctrl_om_o", features=('sixstep',)),
+        Field("vsc_off", 19, 1, "rw", 0x0, port="ctrl_vsc_off_o", features=('carry',)),
+        Field("adc_trig", 20, 2, "rw", 0x0, port="ctrl_adc_trig_o", trimmed=True),
+    )),
     Register("FREQ", 0x10, (
-        Field("freq", 0, 24, "rw", 0x0, signed=True, port="freq_o", compact=True),
-    ), compact=True),
+        Field("freq", 0, 24, "rw", 0x0, signed=True, port="freq_o", features=('freq', 'vf')),
+    ), features=('freq', 'vf')),
     Register("M", 0x14, (
-        Field("m", 0, 16, "rw", 0x0, port="m_o", compact=True),
-    ), compact=True),
+        Field("m", 0, 16, "rw", 0x0, port="m_o"),
+    )),
     Register("THETA", 0x18, (
-        Field("theta", 0, 16, "rw", 0x0, port="theta_o"),
-    )),
+        Field("theta", 0, 16, "rw", 0x0, port="theta_o", features=('polar', 'dq')),
+    ), features=('polar', 'dq')),
     Register("V1", 0x1C, (
-        Field("v1", 0, 16, "rw", 0x0, signed=True, port="v1_o"),
-    )),
+        Field("v1", 0, 16, "rw", 0x0, signed=True, port="v1_o", features=('ab', 'dq')),
+    ), features=('ab', 'dq')),
     Register("V2", 0x20, (
-        Field("v2", 0, 16, "rw", 0x0, signed=True, port="v2_o"),
-    )),
+        Field("v2", 0, 16, "rw", 0x0, signed=True, port="v2_o", features=('ab', 'dq')),
+    ), features=('ab', 'dq')),
     Register("VF_BOOST", 0x24, (
-        Field("vf_boost", 0, 16, "rw", 0x0, port="vf_boost_o"),
-    )),
+        Field("vf_boost", 0, 16, "rw", 0x0, port="vf_boost_o", features=('vf',)),
+    ), features=('vf',)),
     Register("VF_SLOPE", 0x28, (
-        Field("vf_slope", 0, 16, "rw", 0x0, port="vf_slope_o"),
-    )),
+        Field("vf_slope", 0, 16, "rw", 0x0, port="vf_slope_o", features=('vf',)),
+    ), features=('vf',)),
     Register("VF_MMAX", 0x2C, (
-        Field("vf_mmax", 0, 16, "rw", 0x0, port="vf_mmax_o"),
-    )),
+        Field("vf_mmax", 0, 16, "rw", 0x0, port="vf_mmax_o", features=('vf',)),
+    ), features=('vf',)),
     Register("PERIOD", 0x30, (
-        Field("period", 0, 16, "rw", 0x600, port="period_o", compact=True),
-    ), compact=True),
+        Field("period", 0, 16, "rw", 0x600, port="period_o"),
+    )),
     Register("DT", 0x34, (
-        Field("dt", 0, 10, "rw", 0x0, port="dt_dt_o", compact=True),
-        Field("dtf", 16, 10, "rw", 0x0, port="dt_dtf_o"),
-        Field("dtf_en", 31, 1, "rw", 0x0, port="dt_dtf_en_o"),
-    ), compact=True),
+        Field("dt", 0, 10, "rw", 0x0, port="dt_dt_o"),
+        Field("dtf", 16, 10, "rw", 0x0, port="dt_dtf_o", features=('dtf',)),
+        Field("dtf_en", 31, 1, "rw", 0x0, port="dt_dtf_en_o", features=('dtf',)),
+    )),
     Register("MP", 0x38, (
-        Field("mp", 0, 10, "rw", 0x0, port="mp_o"),
-    )),
+        Field("mp", 0, 10, "rw", 0x0, port="mp_o", trimmed=True),
+    ), trimmed=True),
     Register("PRESC", 0x3C, (
-        Field("presc", 0, 8, "rw", 0x0, port="presc_o"),
-    )),
+        Field("presc", 0, 8, "rw", 0x0, port="presc_o", features=('presc',)),
+    ), features=('presc',)),
     Register("STATUS", 0x40, (
-        Field("running", 0, 1, "status", 0x0, port="status_running_i", compact=True),
-        Field("sat", 1, 1, "status", 0x0, port="status_sat_i", compact=True),
-        Field("cfg_err", 2, 1, "status", 0x0, port="status_cfg_err_i", compact=True),
-        Field("period_clamp", 3, 1, "status", 0x0, port="status_period_clamp_i", compact=True),
-        Field("freq_clamp", 4, 1, "status", 0x0, port="status_freq_clamp_i", compact=True),
-        Field("fault", 5, 1, "status", 0x0, port="status_fault_i", compact=True),
-        Field("tripped", 6, 1, "status", 0x0, port="status_tripped_i", compact=True),
-        Field("locked", 7, 1, "status", 0x0, port="status_locked_i", compact=True),
-        Field("sector", 8, 3, "status", 0x0, port="status_sector_i", compact=True),
-    ), compact=True),
+        Field("running", 0, 1, "status", 0x0, port="status_running_i"),
+        Field("sat", 1, 1, "status", 0x0, port="status_sat_i"),
+        Field("cfg_err", 2, 1, "status", 0x0, port="status_cfg_err_i"),
+        Field("period_clamp", 3, 1, "status", 0x0, port="status_period_clamp_i"),
+        Field("freq_clamp", 4, 1, "status", 0x0, port="status_freq_clamp_i"),
+        Field("fault", 5, 1, "status", 0x0, port="status_fault_i"),
+        Field("tripped", 6, 1, "status", 0x0, port="status_tripped_i"),
+        Field("locked", 7, 1, "status", 0x0, port="status_locked_i"),
+        Field("sector", 8, 3, "status", 0x0, port="status_sector_i", trimmed=True),
+    )),
     Register("CARRIER", 0x44, (
-        Field("count", 0, 16, "status", 0x0, port="carrier_count_i"),
-        Field("up", 16, 1, "status", 0x0, port="carrier_up_i"),
-    )),
+        Field("count", 0, 16, "status", 0x0, port="carrier_count_i", trimmed=True),
+        Field("up", 16, 1, "status", 0x0, port="carrier_up_i", trimmed=True),
+    ), trimmed=True),
     Register("PERIOD_ACT", 0x48, (
-        Field("period", 0, 16, "status", 0x0, port="period_act_i"),
-    )),
+        Field("period", 0, 16, "status", 0x0, port="period_act_i", trimmed=True),
+    ), trimmed=True),
     Register("CMP_A", 0x4C, (
-        Field("cmp", 0, 16, "status", 0x0, port="cmp_a_i"),
-    )),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_a_i", trimmed=True),
+    ), trimmed=True),
     Register("CMP_B", 0x50, (
-        Field("cmp", 0, 16, "status", 0x0, port="cmp_b_i"),
-    )),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_b_i", trimmed=True),
+    ), trimmed=True),
     Register("CMP_C", 0x54, (
-        Field("cmp", 0, 16, "status", 0x0, port="cmp_c_i"),
-    )),
+        Field("cmp", 0, 16, "status", 0x0, port="cmp_c_i", trimmed=True),
+    ), trimmed=True),
     Register("CLK_HZ", 0x58, (
-        Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz", compact=True),
-    ), compact=True),
-    Register("FEATURES", 0x5C, (
-        Field("compact", 0, 1, "const", 0x0, rst_param="Compact", compact=True),
-    ), compact=True),
-    Register("DTC", 0x60, (
-        Field("en", 0, 1, "rw", 0x0, port="dtc_en_o"),
-        Field("isign", 4, 3, "rw", 0x0, port="dtc_isign_o"),
+        Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz"),
     )),
+    Register("FEATURES", 0x5C, (
+        Field("features", 0, 16, "const", 0x3FFF, rst_param="Features"),
+        Field("trim", 31, 1, "const", 0x0, rst_param="Trim"),
+    )),
+    Register("DTC", 0x60, (
+        Field("en", 0, 1, "rw", 0x0, port="dtc_en_o", features=('dtc',)),
+        Field("isign", 4, 3, "rw", 0x0, port="dtc_isign_o", features=('dtc',)),
+    ), features=('dtc',)),
 )
 
 BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}
 BY_ADDR: dict[int, Register] = {r.addr: r for r in REGISTERS}
 
 
-def variant(compact: bool) -> tuple[Register, ...]:
-    """The registers a register block with Compact = `compact` has, each with the fields it has
-    (the full map for compact = False). What is left out reads 0 and ignores writes there."""
-    if not compact:
-        return REGISTERS
-    return tuple(replace(r, fields=tuple(f for f in r.fields if f.compact)) for r in REGISTERS if r.compact)
+def built(item: Register | Field, features: int = config.FULL, trim: bool = False) -> bool:
+    """The register / field exists in the build `features` (a config mask) with board cut `trim`."""
+    return (not item.features or any(config.has(features, n) for n in item.features)) and not (trim and item.trimmed)
+
+
+def variant(features: int = config.FULL, trim: bool = False) -> tuple[Register, ...]:
+    """The registers a register block with Features = `features`, Trim = `trim` has, each with the
+    fields it has (the full map for the defaults). What is left out reads 0 and ignores writes there."""
+    return tuple(replace(r, fields=tuple(f for f in r.fields if built(f, features, trim)))
+                 for r in REGISTERS if built(r, features, trim))
+
+
+def absent_mask(reg: Register, features: int = config.FULL, trim: bool = False) -> int:
+    """Bits of `reg` the build does not have (all of them for an absent register)."""
+    return reg.mask() & ~sum(f.mask for f in reg.fields if built(f, features, trim))
 
 
 ID = BY_NAME["ID"]

@@ -5,12 +5,14 @@ and the Python description is self-consistent (no overlapping fields, 4-byte str
 The RTL is checked against the Python description by tb/cocotb/svpwm_bus on both simulators."""
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
+from svpwm_model import config
 from svpwm_model import regmap as R
 
 REPO = Path(__file__).resolve().parents[2]
@@ -32,19 +34,19 @@ def test_regmap_consistent():
     assert (R.CMP_C.addr, R.CLK_HZ.addr) == (0x54, 0x58)
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
-    # FEATURES (map 2.2): appended after CLK_HZ, bit 0 = the Compact parameter; maps 2.3, 2.4: the same offsets
-    assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0002_0004)
-    # map 2.4: the falling dead time and its enable in DT beside dt, full variant only, reset 0 (= dt)
-    fields = {f.name: (f.lsb, f.width, f.kind, f.reset, f.compact) for f in R.DT.fields}
-    assert fields == {"dt": (0, 10, "rw", 0, True), "dtf": (16, 10, "rw", 0, False),
-                      "dtf_en": (31, 1, "rw", 0, False)}, fields
+    # FEATURES (map 2.2; 3.0: the feature mask and the board cut), appended after CLK_HZ; DTC (2.4) after it
+    assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0003_0000)
+    # map 2.4: the falling dead time and its enable in DT beside dt, feature dtf, reset 0 (= dt)
+    fields = {f.name: (f.lsb, f.width, f.kind, f.reset, f.features) for f in R.DT.fields}
+    assert fields == {"dt": (0, 10, "rw", 0, ()), "dtf": (16, 10, "rw", 0, ("dtf",)),
+                      "dtf_en": (31, 1, "rw", 0, ("dtf",))}, fields
     assert R.DT.encode(dt=48, dtf=30, dtf_en=1) == 0x801E_0030
-    # map 2.4: DTC appended after FEATURES, the full variant only
     assert (R.DTC.addr, R.SIZE, R.DTC.encode(en=1, isign=5)) == (0x60, 0x64, 0x51)
-    assert not R.DTC.compact
-    f = R.FEATURES.field("compact")
-    assert (f.kind, f.lsb, f.width, f.reset, f.rst_param, f.compact) == ("const", 0, 1, 0, R.VARIANT_PARAM, True)
-    assert R.VARIANT_PARAM == "Compact" and R.FEATURES.mask() == 1
+    f, t = R.FEATURES.field("features"), R.FEATURES.field("trim")
+    assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 16, config.FULL, R.FEATURE_PARAM)
+    assert (t.kind, t.lsb, t.width, t.reset, t.rst_param) == ("const", 31, 1, 0, R.TRIM_PARAM)
+    assert (R.FEATURE_PARAM, R.TRIM_PARAM, R.FEATURES.mask()) == ("Features", "Trim", 0x8000_FFFF)
+    assert R.FEATURES.encode(features=config.CONFIGS["foc"], trim=1) == 0x8000_3F9C
     # CONFIG (map 2.3): each width is the wrapper's parameter of that name, default the map's field widths
     assert {f.name: (f.rst_param, f.reset) for f in R.CONFIG.fields} == {
         "dt_width": ("DtWidth", 10), "cnt_width": ("CntWidth", 16), "freq_width": ("FreqWidth", 24),
@@ -53,45 +55,76 @@ def test_regmap_consistent():
             R.FREQ.field("freq").width) == (16, 10, 10, 24)
 
 
-# what the compact core uses (FREQ mode, continuous SVPWM, valley updates, no sync start; map 2.3: no MP,
-# the core runs with a minimum pulse of 0 -- what fits the iCEstick's HX1K)
-COMPACT_REGS = {"ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "STATUS", "CLK_HZ", "FEATURES"}
-COMPACT_CTRL = ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear"]
-COMPACT_DT = ["dt"]            # map 2.4: the compact core has one dead time (no dtf, dtf_en)
-PARTIAL = {"CTRL": COMPACT_CTRL, "DT": COMPACT_DT}     # registers only some of whose fields are compact
+# the feature(s) each register / field belongs to (issue 28): typed here once more on purpose, the
+# generator's input (rdl/svpwm.rdl) is checked against this
+FEATURE_REGS = {"FREQ": ("freq", "vf"), "THETA": ("polar", "dq"), "V1": ("ab", "dq"), "V2": ("ab", "dq"),
+                "VF_BOOST": ("vf",), "VF_SLOPE": ("vf",), "VF_MMAX": ("vf",), "PRESC": ("presc",), "DTC": ("dtc",)}
+FEATURE_FIELDS = {("CTRL", "sync_en"): ("sync",), ("CTRL", "upd"): ("upd",), ("CTRL", "dpwm"): ("dpwm",),
+                  ("CTRL", "om"): ("sixstep",), ("CTRL", "vsc_off"): ("carry",), ("DT", "dtf"): ("dtf",),
+                  ("DT", "dtf_en"): ("dtf",)}
+# the iCEstick's board cut (Trim = 1), whatever the features
+TRIM_REGS = {"MP", "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C"}
+TRIM_FIELDS = {("CTRL", "mode"), ("CTRL", "adc_trig"), ("STATUS", "sector")}
+# what the iCEstick (tiny, Trim = 1) has: the map of the compact variant before map 3.0
+TINY_TRIM_REGS = ["ID", "VERSION", "CONFIG", "CTRL", "FREQ", "M", "PERIOD", "DT", "STATUS", "CLK_HZ", "FEATURES"]
+TINY_TRIM_CTRL = ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear"]
 
 
-def test_compact_variant():
-    assert {r.name for r in R.REGISTERS if r.compact} == COMPACT_REGS
-    for name, compact in PARTIAL.items():
-        assert [f.name for f in R.BY_NAME[name].fields if f.compact] == compact
+def test_feature_tags():
     for r in R.REGISTERS:
+        assert r.features == FEATURE_REGS.get(r.name, ()), r.name
+        assert r.trimmed == (r.name in TRIM_REGS), r.name
         for f in r.fields:
-            if r.name not in PARTIAL:
-                assert f.compact == r.compact, f"{r.name}.{f.name}"
-            if not f.compact:        # absent: its output is a constant there, so reset 0 without a parameter
+            assert f.features == (r.features or FEATURE_FIELDS.get((r.name, f.name), ())), f"{r.name}.{f.name}"
+            assert f.trimmed == (r.trimmed or (r.name, f.name) in TRIM_FIELDS), f"{r.name}.{f.name}"
+            if f.features or f.trimmed:  # absent: its output is a constant there, so reset 0 without a parameter
                 assert f.reset == 0 and f.rst_param is None, f"{r.name}.{f.name}"
-    assert R.variant(False) == R.REGISTERS
-    v = R.variant(True)
-    assert [r.name for r in v] == [r.name for r in R.REGISTERS if r.name in COMPACT_REGS]   # map order
+
+
+def test_variants():
+    assert R.variant() == R.variant(config.FULL, False) == R.REGISTERS
+    v = R.variant(config.TINY, True)
+    assert [r.name for r in v] == TINY_TRIM_REGS                     # map order
+    assert [f.name for f in v[3].fields] == TINY_TRIM_CTRL and [f.name for f in v[7].fields] == ["dt"]
     for r in v:
         full = R.BY_NAME[r.name]
-        assert r.addr == full.addr and r.fields == tuple(f for f in full.fields if f.compact)
-    assert {f.name for f in [r for r in v if r.name == "CTRL"][0].fields} == set(COMPACT_CTRL)
+        assert r.addr == full.addr and r.fields == tuple(f for f in full.fields if R.built(f, config.TINY, True))
+    # minimal (POLAR only): no FREQ, V1, V2, VF_*, PRESC, DTC; CTRL without sync_en, upd, dpwm, om, vsc_off
+    m = {r.name: r for r in R.variant(config.CONFIGS["minimal"])}
+    assert set(R.BY_NAME) - set(m) == {"FREQ", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC", "DTC"}
+    assert [f.name for f in m["CTRL"].fields] == ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear",
+                                                  "mode", "adc_trig"]
+    assert R.absent_mask(R.CTRL, config.CONFIGS["minimal"]) == 0x000F_3002
+    assert R.absent_mask(R.THETA, config.CONFIGS["vf"]) == 0xFFFF and R.absent_mask(R.THETA) == 0
+    # foc: every register but FREQ and VF_*, CTRL without dpwm and om
+    f = {r.name: r for r in R.variant(config.CONFIGS["foc"])}
+    assert set(R.BY_NAME) - set(f) == {"FREQ", "VF_BOOST", "VF_SLOPE", "VF_MMAX"}
+    assert R.absent_mask(R.CTRL, config.CONFIGS["foc"]) == 0x0007_0000
 
 
-def test_docs_show_compact():
-    """docs/registers.md has the compact column: yes / the present fields / a dash, per register."""
+def test_docs_show_features():
+    """docs/registers.md has the features and trim columns per register."""
     rows = {}
     for line in (REPO / "docs/registers.md").read_text().splitlines():
-        cells = [c.strip() for c in line.strip("|").split("|")]
-        if len(cells) == 6 and cells[1] in R.BY_NAME:
-            rows[cells[1]] = cells[4]
+        cells = [c.strip() for c in re.split(r"(?<!\\)\|", line.strip("|"))]     # `\|`: a | in a cell
+        if len(cells) == 7 and cells[1] in R.BY_NAME:
+            rows[cells[1]] = (cells[4], cells[5])
     assert set(rows) == set(R.BY_NAME)
-    for r in R.REGISTERS:
-        present = [f.name for f in r.fields if f.compact]
-        exp = "yes" if len(present) == len(r.fields) else ", ".join(present) if present else "—"
-        assert rows[r.name] == exp, f"{r.name}: docs say {rows[r.name]!r}, regmap {exp!r}"
+    assert rows["THETA"] == ("polar\\|dq", "—") and rows["MP"] == ("—", "cut")
+    assert rows["CTRL"] == ("sync_en: sync; upd: upd; dpwm: dpwm; om: sixstep; vsc_off: carry", "mode, adc_trig")
+    assert rows["STATUS"] == ("—", "sector") and rows["ID"] == ("—", "—")
+
+
+def test_c_header_features(tmp_path):
+    """sw/svpwm_regs.h names the feature bits and the configurations (config.py), checked by the compiler."""
+    lines = ['#include "svpwm_regs.h"']
+    lines += [f"_Static_assert(SVPWM_FEAT_{n.upper()} == 0x{1 << i:X}u, \"{n}\");" for i, n in enumerate(config.FEATURES)]
+    lines += [f"_Static_assert(SVPWM_CFG_{n.upper()} == 0x{v:X}u, \"{n}\");" for n, v in config.CONFIGS.items()]
+    src = tmp_path / "feat.c"
+    src.write_text("\n".join(lines) + "\n")
+    r = subprocess.run(["cc", "-std=c11", "-Wall", "-Werror", "-fsyntax-only", "-I", str(REPO / "sw"), str(src)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
 
 
 def _c_checks() -> str:

@@ -31,6 +31,8 @@
 // CTRL.mode encodings (docs/registers.md, scripts/svpwmctl.py MODES)
 static const char *const mode_names[] = {"freq", "vf", "polar", "alphabeta", "dq"};
 #define N_MODES ((int)(sizeof(mode_names) / sizeof(mode_names[0])))
+// the feature each mode needs (FEATURES.features; index = the mode code)
+static const uint32_t mode_feat[] = {SVPWM_FEAT_FREQ, SVPWM_FEAT_VF, SVPWM_FEAT_POLAR, SVPWM_FEAT_AB, SVPWM_FEAT_DQ};
 
 // ------------------------------------------------------------------------------------------ output
 // say(): a small printf for the console: %d int32, %x uint32 as 0x%08x, %s string, %3 / %5 an int32
@@ -131,8 +133,9 @@ static int64_t __attribute__((noinline)) muldiv(int64_t a, int64_t b, int64_t c)
 static uint32_t clk_hz(void) { return REG(CLK_HZ); }
 static int64_t freq_den(void) { return (int64_t)6 << FIELD(CONFIG, PHASE_WIDTH); }   // LSBs per Hz * CLK_HZ
 static int32_t freq_lim(void) { return (1 << (FIELD(CONFIG, FREQ_WIDTH) - 1)) - 1; }  // the core's FreqMax
-static int compact(void) { return (int)FIELD(FEATURES, COMPACT); }
-static int32_t min_period(void) { return compact() ? SVPWM_LITE_MIN_PERIOD : SVPWM_MIN_PERIOD; }
+// the core's build (FEATURES.features, the SVPWM_FEAT_* bits of svpwm_regs.h): what is not built reads 0
+static int has(uint32_t feat) { return (FIELD(FEATURES, FEATURES) & feat) != 0; }
+static int32_t min_period(void) { return SVPWM_MIN_PERIOD; }   // the SoC's build's MinPeriod (svpwm_soc.py)
 // frequency word -> mHz and f_sw of a half period -> mHz
 static int32_t freq_mhz(int32_t w) { return (int32_t)muldiv(w, (int64_t)clk_hz() * 1000, freq_den()); }
 static int32_t fsw_mhz(int32_t p) { return (int32_t)muldiv(clk_hz(), 500, p); }
@@ -225,7 +228,7 @@ static int str_eq(const char *a, const char *b) {
 static int cmd_mode(const char *a) {
   for (int i = 0; i < N_MODES; i++) {
     if (str_eq(a, mode_names[i])) {
-      if (compact() && i != 0) return err("not in the compact core: ", a);
+      if (!has(mode_feat[i])) return err("not in this build (FEATURES): mode ", a);
       SETF(CTRL, MODE, i);
       say("CTRL.mode = %s\n", mode_names[i]);
       return 0;
@@ -259,10 +262,10 @@ static void cmd_status(void) {
       GET(STATUS, CFG_ERR, st), GET(STATUS, PERIOD_CLAMP, st), GET(STATUS, FREQ_CLAMP, st),
       GET(STATUS, LOCKED, st));
   say("sector %d en %d mode %s\nfreq %3 Hz (word %d) m %5 period %d clocks (f_sw %3 Hz) dt %d clocks\n"
-      "CLK_HZ %d (%s core)\n",
+      "CLK_HZ %d (FEATURES %x)\n",
       GET(STATUS, SECTOR, st), GET(CTRL, EN, ctrl), mode < (uint32_t)N_MODES ? mode_names[mode] : "invalid",
       freq_mhz(fw), fw, (int32_t)muldiv(FIELD(M, M), 100000, 0x8000), period, period ? fsw_mhz(period) : 0,
-      FIELD(DT, DT), clk_hz(), compact() ? "compact" : "full");
+      FIELD(DT, DT), clk_hz(), REG(FEATURES));
 }
 
 static uint32_t tripped_seen;
@@ -281,7 +284,7 @@ static void report_trip(void) {
 static int cmd_ramp(int32_t ms) {
   int32_t w50;
   if (ms < 1 || ms > 60000) return err("ramp time out of range 1 .. 60000 ms", 0);
-  if (compact()) return err("not in the compact core: ramp", 0);
+  if (!has(SVPWM_FEAT_VF)) return err("not in this build (FEATURES): ramp (needs vf)", 0);
   if (!dt_set()) return -1;
   int32_t m = FIELD(M, M);
   if (m == 0) return err("M is 0: set m (the index at 50 Hz) first", 0);

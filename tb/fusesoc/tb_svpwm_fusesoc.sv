@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // tb_svpwm_fusesoc: the self-checking testbench of svpwm.core's `sim` target (Icarus through edalize).
-// svpwm_mmio with all parameters at their defaults: after reset the register port reads ID, VERSION and
-// CTRL's reset value and the gates stay off; prints "tb_svpwm_fusesoc: PASS" or stops with $fatal.
-// Parameters: none. Restrictions: simulation only.
+// svpwm_mmio with its parameters at their defaults but Features: after reset the register port reads ID,
+// CTRL's reset value and FEATURES (the build) and the gates stay off; prints "tb_svpwm_fusesoc: PASS" or
+// stops with $fatal.
+// Parameters: Features - svpwm_mmio's (svpwm.core's parameter Features; default svpwm_pkg::CfgFull).
+// Restrictions: simulation only.
 `default_nettype none
 
-module tb_svpwm_fusesoc;
+module tb_svpwm_fusesoc #(
+  parameter int Features = 32'h3fff        // svpwm_pkg::CfgFull (int: FuseSoC passes an integer)
+);
   logic        clk = 1'b0, rst_n = 1'b0, req = 1'b0;
   logic [7:0]  addr = '0;
   logic [31:0] rdata;
@@ -13,7 +17,7 @@ module tb_svpwm_fusesoc;
 
   always #5 clk = ~clk;
 
-  svpwm_mmio u_dut (
+  svpwm_mmio #(.Features (32'(Features))) u_dut (
     .clk_i (clk), .rst_ni (rst_n), .req_i (req), .we_i (1'b0), .addr_i (addr), .wdata_i (32'h0),
     .be_i (4'hf), .rdata_o (rdata), .fault_i (1'b0), .sync_i (1'b0), .gate_hi_o (gate_hi),
     .gate_lo_o (gate_lo), .pole_o (), .valley_o (), .peak_o (), .update_o (), .adc_trig_o (),
@@ -31,6 +35,7 @@ module tb_svpwm_fusesoc;
     rst_n = 1'b1;
     check_read(8'h00, 32'h5356_5057);            // ID "SVPW"
     check_read(8'h0c, 32'h0000_0000);            // CTRL reset value (GatePol = 0)
+    check_read(8'h5c, {16'h0, 16'(Features)});   // FEATURES: the build, no board cut
     if (gate_hi !== 3'b000 || gate_lo !== 3'b000) $fatal(1, "tb_svpwm_fusesoc: gates on while stopped");
     $display("tb_svpwm_fusesoc: PASS");
     $finish;

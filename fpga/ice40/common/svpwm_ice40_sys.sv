@@ -11,10 +11,13 @@
 //   TimeoutBits - inter-byte timeout of the frame protocol in bit times (1000 = 8.7 ms at 115200)
 //   MinPeriod, FreqMax, GatePol - svpwm_core (via svpwm_mmio); the core's widths are those of the
 //                 register map (PhaseWidth 34, FreqWidth 24, DtWidth 10) but CntWidth
-//   CntWidth    - svpwm_mmio CntWidth: 16, the compact system 12 (f_sw >= 5.9 kHz at 48 MHz; with the
-//                 compact variant this is what fits the iCEstick's HX1K); read back in CONFIG.cnt_width
-//   Compact     - 1: the compact variant of svpwm_mmio (compact core + the registers it uses, no MP; for
-//                 the iCEstick's HX1K); svpwmctl reads it in FEATURES.compact
+//   CntWidth    - svpwm_mmio CntWidth: 16, the trimmed system 12 (f_sw >= 5.9 kHz at 48 MHz; with the
+//                 board cut this is what fits the iCEstick's HX1K); read back in CONFIG.cnt_width
+//   Features    - the build (svpwm_mmio, svpwm_core, svpwm_regs): a mask of svpwm_pkg::Feat* bits, e.g.
+//                 svpwm_pkg::CfgFull (iCEBreaker), svpwm_pkg::CfgTiny (iCEstick); svpwmctl reads it in
+//                 FEATURES.features and refuses what the board lacks
+//   Trim        - 1: svpwm_mmio's board cut for the iCEstick's HX1K (no MP, CTRL.mode, CTRL.adc_trig,
+//                 CARRIER, PERIOD_ACT, CMP_A..C); svpwmctl reads it in FEATURES.trim
 // Pins: rx_i / tx_o UART (8N1), fault_ni active low (e.g. a gate driver's FAULT# with a pull-up) into
 // the core's fault_i: the core turns the gates off combinationally, synchronises the pin itself (two
 // flops, STATUS.fault) and latches the trip until CTRL.fault_clear (STATUS.tripped); gate outputs
@@ -25,15 +28,15 @@
 `default_nettype none
 
 module svpwm_ice40_sys #(
-  parameter bit         Compact     = 1'b0,                         // compact core + register subset
+  parameter logic [31:0] Features   = svpwm_pkg::CfgFull,           // the build (svpwm_pkg::Cfg*)
+  parameter bit         Trim        = 1'b0,                         // the iCEstick's register cut
   parameter int         ClkHz       = 48_000_000,                   // core clock in Hz
   parameter int         ClksPerBit  = (ClkHz + 115_200 / 2) / 115_200,  // 115200 baud, rounded
   parameter int         TimeoutBits = 1000,                         // inter-byte timeout, bit times
-  parameter int         MinPeriod   = svpwm_pkg::min_period(Compact ? svpwm_pkg::CfgTiny
-                                                                    : svpwm_pkg::CfgFull),
+  parameter int         MinPeriod   = svpwm_pkg::min_period(Features),
   parameter int         FreqMax     = (1 << 23) - 1,                // svpwm_core FreqMax (FreqWidth 24)
   parameter logic [1:0] GatePol     = 2'b00,                        // svpwm_core GatePol, CTRL.pol reset
-  parameter int         CntWidth    = Compact ? 12 : 16             // carrier / period width (mmio)
+  parameter int         CntWidth    = Trim ? 12 : 16                // carrier / period width (mmio)
 ) (
   input  logic       clk_i,           // core clock, ClkHz
   input  logic       rst_ni,          // synchronously released reset, active low
@@ -88,7 +91,8 @@ module svpwm_ice40_sys #(
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),
     .ClkHz     (ClkHz),
-    .Compact   (Compact),
+    .Features  (Features),
+    .Trim      (Trim),
     .CntWidth  (CntWidth)
   ) u_mmio (
     .clk_i      (clk_i),

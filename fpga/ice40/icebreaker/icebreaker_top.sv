@@ -8,6 +8,7 @@
 //   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
 //                 one place to change it (nextpnr derives the clock constraint from the PLL settings
 //                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
+//   Features    - the build (svpwm_pkg::Cfg*, a mask of svpwm_pkg::Feat* bits), default svpwm_pkg::CfgFull
 //   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol)
 // Restrictions: ClkHz must be what the PLL settings give (checked at elaboration).
 `default_nettype none
@@ -23,7 +24,8 @@ module icebreaker_top #(
   parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
-  parameter int         MinPeriod      = svpwm_pkg::min_period(svpwm_pkg::CfgFull),
+  parameter logic [31:0] Features       = svpwm_pkg::CfgFull,
+  parameter int         MinPeriod      = svpwm_pkg::min_period(Features),
   parameter int         FreqMax        = (1 << 23) - 1,
   parameter logic [1:0] GatePol        = 2'b00
 ) (
@@ -83,6 +85,7 @@ module icebreaker_top #(
 
   svpwm_ice40_sys #(
     .ClkHz     (ClkHz),
+    .Features  (Features),
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
     .GatePol   (GatePol)

@@ -2,19 +2,20 @@
 // icestick_top: svpwm on the Lattice iCEstick (iCE40HX1K-TQ144). 12 MHz oscillator -> SB_PLL40_CORE ->
 // core clock (default 48.000 MHz), reset synchroniser on the PLL lock (the board has no button),
 // svpwm_ice40_sys with the UART at 115200 baud on the FTDI channel B pins in front of the generated
-// register map (docs/registers.md), the COMPACT core (svpwm_core Compact = 1: FREQ mode, continuous
-// SVPWM, valley updates, serial calculator; the registers it uses, no minimum pulse register --
-// FEATURES.compact = 1) with a 12-bit carrier (CntWidth 12: PERIOD <= 4095, f_sw >= 5.9 kHz at 48 MHz),
+// register map (docs/registers.md), the TINY build (Features = svpwm_pkg::CfgTiny: FREQ mode, continuous
+// SVPWM, valley updates, serial calculator; FEATURES.features = 0x0001) with the board cut (Trim = 1: no
+// minimum pulse register, no CTRL.mode, read-back registers; FEATURES.trim = 1) and a 12-bit carrier (CntWidth 12: PERIOD <= 4095, f_sw >= 5.9 kHz at 48 MHz),
 // six gates and an active-low fault input on the PMOD J2, run on the green LED D5, fault (tripped) on
 // the red LED D1. Pins: icestick.pcf.
 // Parameters:
 //   ClkHz, PllDivr, PllDivf, PllDivq, PllFilterRange - the board clock, see "board clock" below: the
 //                 one place to change it (nextpnr derives the clock constraint from the PLL settings
 //                 and the 12 MHz of the .pcf; CLK_HZ and the UART divider follow ClkHz)
+//   Features    - the build (svpwm_pkg::Cfg*), default svpwm_pkg::CfgTiny (what fits the HX1K)
 //   MinPeriod, FreqMax, GatePol - svpwm_core (GatePol also the reset value of CTRL.pol); MinPeriod >= the
-//                 compact core's SampleLead + 4 (svpwm_pkg::min_period(svpwm_pkg::CfgTiny), the default)
+//                 build's SampleLead + 4 (svpwm_pkg::min_period(Features), the default)
 // Restrictions: ClkHz must be what the PLL settings give (checked at elaboration). The full core does not
-// fit the HX1K's 1280 logic cells; this compact system does (fpga/ice40/README.md has the figures).
+// fit the HX1K's 1280 logic cells; this tiny, trimmed system does (fpga/ice40/README.md has the figures).
 `default_nettype none
 
 module icestick_top #(
@@ -28,7 +29,8 @@ module icestick_top #(
   parameter int         PllDivq        = 4,
   parameter int         PllFilterRange = 1,
   // ---- core ------------------------------------------------------------------------------------
-  parameter int         MinPeriod      = svpwm_pkg::min_period(svpwm_pkg::CfgTiny),
+  parameter logic [31:0] Features       = svpwm_pkg::CfgTiny,
+  parameter int         MinPeriod      = svpwm_pkg::min_period(Features),
   parameter int         FreqMax        = (1 << 23) - 1,
   parameter logic [1:0] GatePol        = 2'b00
 ) (
@@ -91,7 +93,8 @@ module icestick_top #(
     .MinPeriod (MinPeriod),
     .FreqMax   (FreqMax),
     .GatePol   (GatePol),
-    .Compact   (1'b1),
+    .Features  (Features),
+    .Trim      (1'b1),
     .CntWidth  (12)
   ) u_sys (
     .clk_i       (clk),

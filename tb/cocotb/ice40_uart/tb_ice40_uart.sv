@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // tb_ice40_uart: harness around svpwm_ice40_sys (UART bridge + svpwm_mmio: generated register map +
-// svpwm_core; full or compact) for test_ice40_uart.py. 10 ns clock (ClkHz 100 MHz, read back in CLK_HZ) generated here;
+// svpwm_core; full, or the iCEstick's tiny build with the board cut) for test_ice40_uart.py. 10 ns clock (ClkHz 100 MHz, read back in CLK_HZ) generated here;
 // cocotb drives only rx_i / fault_ni / rst_ni and watches tx_o, the gates and the LEDs. `cycle` counts
 // clocks (incremented at every rising edge) so that the test can time pin edges in exact clocks;
 // `gates` = {gate_lo_o, gate_hi_o}, the word format of the golden model's gate edges. GATE_LEVEL defined:
@@ -12,7 +12,8 @@ module tb_ice40_uart #(
   parameter int ClkHz       = 100_000_000,
   parameter int ClksPerBit  = 8,
   parameter int TimeoutBits = 40,
-  parameter bit Compact     = 1'b0      // the compact system (iCEstick): svpwm_core / svpwm_regs Compact = 1
+  parameter int Features    = 32'h3fff, // the build (svpwm_pkg::Cfg*; the iCEstick: CfgTiny = 1)
+  parameter bit Trim        = 1'b0      // the iCEstick's board cut of the register block
 ) (
   input  logic        rst_ni,
   input  logic        rx_i,
@@ -40,7 +41,8 @@ module tb_ice40_uart #(
     .ClkHz       (ClkHz),
     .ClksPerBit  (ClksPerBit),
     .TimeoutBits (TimeoutBits),
-    .Compact     (Compact)
+    .Features    (32'(Features)),
+    .Trim        (Trim)
   ) u_sys (
 `endif
     .clk_i       (clk),

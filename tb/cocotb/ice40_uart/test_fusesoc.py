@@ -71,3 +71,17 @@ def test_fusesoc_target(tmp_path, env, target):
     assert r.returncode == 0, (r.stdout + r.stderr)[-3000:]
     if target == "sim":
         assert "tb_svpwm_fusesoc: PASS" in r.stdout + r.stderr, (r.stdout + r.stderr)[-3000:]
+
+
+def test_fusesoc_features_parameter(tmp_path, env):
+    """svpwm.core's parameter Features is the build's: the values it documents are config.py's, and the sim
+    target with --Features=<minimal> reads that mask back in FEATURES (the testbench checks it)."""
+    from svpwm_model import config
+    text = (REPO / "svpwm.core").read_text()
+    assert _core()["parameters"]["Features"]["default"] == config.FULL
+    for name, v in config.CONFIGS.items():
+        assert f"{v} {name}" in text, f"svpwm.core does not document {name} = {v}"
+    minimal = config.CONFIGS["minimal"]
+    r = fusesoc(["run", "--build-root", str(tmp_path / "build"), "--target", "sim", "svpwm:ip:svpwm_core",
+                 f"--Features={minimal}"], tmp_path, env)
+    assert r.returncode == 0 and "tb_svpwm_fusesoc: PASS" in r.stdout + r.stderr, (r.stdout + r.stderr)[-3000:]

@@ -5,9 +5,9 @@ fault input and the LEDs. Register names, byte offsets, fields and reset values 
 svpwm_model.regmap (generated from rdl/svpwm.rdl); gate edges are compared with the golden model
 (svpwm_model.core) clock by clock. Fast UART in simulation: 8 clocks per bit on the RTL, 4 (the UART's
 minimum) on the gate-level netlist (env SVPWM_CPB), 40-bit-time timeout.
-Both variants of the system (env SVPWM_COMPACT): the full one (iCEBreaker) and the compact one (iCEstick:
-svpwm_core / svpwm_regs Compact = 1), whose register map is regmap.variant(True) -- the registers and fields
-it does not have read 0 and ignore writes -- and whose core is CoreModel(compact=True).
+Both systems (env SVPWM_STICK): the full one (iCEBreaker) and the iCEstick's (svpwm_ice40_sys Features =
+svpwm_pkg::CfgTiny, Trim = 1), whose register map is regmap.variant(config.TINY, True) -- the registers and
+fields it does not have read 0 and ignore writes -- and whose core is CoreModel(features=config.TINY).
 
 Timing reference: the 'K' reply to a write starts (tx_o falls) on the clock edge that writes the
 register, so the clock in which the start bit of the reply to `CTRL.en = 1` begins is the model's cycle 0
@@ -32,18 +32,19 @@ from clocks import CLK_PS, clock_cycles
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
-from svpwm_model import core, fixed  # noqa: E402
+from svpwm_model import config, core, fixed  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
 RTL_CPB, GL_CPB = 8, 4  # clocks per bit (harness / system parameter ClksPerBit): RTL, gate-level netlist
 CPB = int(os.environ.get("SVPWM_CPB", RTL_CPB))             # this run's (set by the pytest function)
 TIMEOUT_BITS = 40
 CLK_HZ = 100_000_000    # harness ClkHz
-COMPACT = int(os.environ.get("SVPWM_COMPACT", "0"))          # harness / system parameter Compact
+COMPACT = int(os.environ.get("SVPWM_STICK", "0"))            # 1: the iCEstick's system (tiny, Trim = 1)
+FEATURES = config.TINY if COMPACT else config.FULL            # harness / system parameters Features, Trim
 CNT_WIDTH = 12 if COMPACT else 16                             # svpwm_ice40_sys CntWidth (its default)
-PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Compact": COMPACT,  # values of the rst_param fields in this system
+PARAMS = {"ClkHz": CLK_HZ, "GatePol": 0, "Features": FEATURES, "Trim": COMPACT,  # the rst_param fields' values
           "DtWidth": 10, "CntWidth": CNT_WIDTH, "FreqWidth": 24, "PhaseWidth": 34}
-V = {r.name: r for r in R.variant(bool(COMPACT))}             # this variant's registers, with its fields
+V = {r.name: r for r in R.variant(FEATURES, bool(COMPACT))}   # this system's registers, with its fields
 RW_REGS = [r for r in V.values() if r.mask("rw")]
 CTRL = V["CTRL"]
 # carrier half periods of the tests: above the core's MinPeriod (SampleLead + 4, fixed.MIN_PERIOD / LITE_)
@@ -230,7 +231,7 @@ async def id_and_reset_values(dut):
     registers read the idle core; unmapped addresses read 0; RO and unmapped addresses ignore writes."""
     u = await setup(dut)
     assert await u.read(R.ID) == 0x5356_5057
-    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0002_0004
+    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0003_0000
     assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": CNT_WIDTH, "freq_width": 24,
                                                         "phase_width": 34}
     assert await u.read(R.CLK_HZ) == CLK_HZ
@@ -240,7 +241,7 @@ async def id_and_reset_values(dut):
     live = dict(STATUS=0, CARRIER=R.CARRIER.encode(count=0, up=1),
                 PERIOD_ACT=fixed.clamp_period(R.PERIOD.reset, R.DT.reset, R.MP.reset)[0], CMP_A=0, CMP_B=0, CMP_C=0)
     exp.update({k: v for k, v in live.items() if k in V})
-    assert exp["FEATURES"] == R.FEATURES.encode(compact=COMPACT)
+    assert exp["FEATURES"] == R.FEATURES.encode(features=FEATURES, trim=COMPACT)
     assert got == exp, {k: (hex(got[k]), hex(exp[k])) for k in got if got[k] != exp[k]}
     for a in (R.SIZE, 0x80, 0xFC):
         assert await u.read(a) == 0, f"unmapped 0x{a:02x}"
@@ -485,8 +486,9 @@ def test_ice40_uart(sim, compact, case):
             + sorted((REPO / "fpga/ice40/common").glob("*.sv")) + [Path(__file__).parent / "tb_ice40_uart.sv"])
     run_sim(sim, toplevel="tb_ice40_uart", sources=srcs, test_module="test_ice40_uart",
             test_dir=Path(__file__).parent, build_name="compact" if compact else "default",
-            parameters={"ClkHz": CLK_HZ, "ClksPerBit": RTL_CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(RTL_CPB)}, testcase=case,
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": RTL_CPB, "TimeoutBits": TIMEOUT_BITS,
+                        "Features": config.TINY if compact else config.FULL, "Trim": compact},
+            extra_env={"SVPWM_STICK": str(compact), "SVPWM_CPB": str(RTL_CPB)}, testcase=case,
             vpi_top_only=True, vpi_modules=["uart_rx"])    # break_condition probes u_sys.u_bridge.u_rx
 
 
@@ -509,7 +511,8 @@ def _netlist(compact: int, wait: bool = True) -> tuple[Path, Path] | None:
     top = "svpwm_ice40_sys"
     out = REPO / "build" / "gate_level" / f"ice40_sys_c{compact}"
     board = ice40flow.BOARDS["icestick" if compact else "icebreaker"]
-    params = dict(ClkHz=CLK_HZ, ClksPerBit=GL_CPB, TimeoutBits=TIMEOUT_BITS, Compact=compact)
+    params = dict(ClkHz=CLK_HZ, ClksPerBit=GL_CPB, TimeoutBits=TIMEOUT_BITS,
+                  Features=config.TINY if compact else config.FULL, Trim=compact)
     srcs = ice40flow.system_sources()
     # synthesised once for the items of this variant: again only when a source, the board or a parameter
     # changed (the key), under a lock (pytest-xdist workers). A worker that finds the lock taken (another
@@ -563,6 +566,7 @@ def test_ice40_uart_gate_level(sim, compact, case):
     run_sim(sim, toplevel="tb_ice40_uart", sources=[cells, netlist, Path(__file__).parent / "tb_ice40_uart.sv"],
             test_module="test_ice40_uart", test_dir=Path(__file__).parent,
             build_name=f"gate_level_c{compact}", defines={"GATE_LEVEL": 1, "NO_ICE40_DEFAULT_ASSIGNMENTS": 1},
-            parameters={"ClkHz": CLK_HZ, "ClksPerBit": GL_CPB, "TimeoutBits": TIMEOUT_BITS, "Compact": compact},
-            extra_env={"SVPWM_COMPACT": str(compact), "SVPWM_CPB": str(GL_CPB)}, testcase=case, vpi_top_only=True,
+            parameters={"ClkHz": CLK_HZ, "ClksPerBit": GL_CPB, "TimeoutBits": TIMEOUT_BITS,
+                        "Features": config.TINY if compact else config.FULL, "Trim": compact},
+            extra_env={"SVPWM_STICK": str(compact), "SVPWM_CPB": str(GL_CPB)}, testcase=case, vpi_top_only=True,
             extra_build_args=GL_VERILATOR_ARGS if sim == "verilator" else [])

@@ -20,7 +20,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[3]
 sys.path.insert(0, str(REPO / "scripts"))
 import svpwmctl as ctl  # noqa: E402
-from svpwm_model import fixed, ideal  # noqa: E402
+from svpwm_model import config, fixed, ideal  # noqa: E402
 from svpwm_model import regmap as R  # noqa: E402
 
 MAP_VERSION = f"{R.VERSION.field('major').reset}.{R.VERSION.field('minor').reset}"   # generated map
@@ -32,14 +32,15 @@ class FakeBoard:
     semantics (RW masks, RO ignored, w1s sticky, pulse reads 0, unmapped reads 0), from regmap.py.
     A pyserial-like port: write(bytes) / read(n). `status` is what the core drives into STATUS; a
     CTRL.fault_clear pulse clears its tripped bit unless the fault bit is set (the core's latch).
-    compact: the compact variant (R.variant(True): absent registers and fields read 0, ignore writes)."""
+    features, trim: the build (R.variant(features, trim): absent registers and fields read 0, ignore writes)."""
 
-    def __init__(self, clk_hz=48_000_000, answer=True, version=None, compact=False, cnt_width=16):
-        self.map = {r.addr: r for r in R.variant(compact)}
+    def __init__(self, clk_hz=48_000_000, answer=True, version=None, features=config.FULL, trim=False,
+                 cnt_width=16):
+        self.map = {r.addr: r for r in R.variant(features, trim)}
         self.regs = {r.addr: r.reset for r in self.map.values()}
         self.regs[R.CLK_HZ.addr] = clk_hz
         self.regs[R.CONFIG.addr] = R.CONFIG.encode(**{**R.CONFIG.decode(R.CONFIG.reset), "cnt_width": cnt_width})
-        self.regs[R.FEATURES.addr] = R.FEATURES.encode(compact=int(compact))
+        self.regs[R.FEATURES.addr] = R.FEATURES.encode(features=features, trim=int(trim))
         if version is not None:
             self.regs[R.VERSION.addr] = version
         self.status = 0
@@ -204,7 +205,8 @@ def test_status_and_reads():
     assert cmd(fb, "read", "0x80") == "0x00000000"
     assert cmd(fb, "read", "CLK_HZ") == "0x02dc6c00  clk_hz=48000000"
     assert cmd(fb, "info").startswith(f"ID 0x53565057 (svpwm), register map {MAP_VERSION}, clock 48000000 Hz")
-    assert cmd(fb, "info").endswith("DtWidth 10, full variant") and st["variant"] == "full"
+    assert cmd(fb, "info").endswith("DtWidth 10, build full (FEATURES.features 0x3fff: freq, vf, polar, ab, dq, dpwm, "
+                                    "sixstep, dtc, carry, dtf, upd, presc, sync, dsp)") and st["build"] == "full"
     dump = cmd(fb, "dump").splitlines()
     assert [line.split()[1] for line in dump] == [r.name for r in R.REGISTERS]
     cmd(fb, "write", "CTRL.mode", "7")
@@ -317,16 +319,17 @@ def test_locked_and_period_rules():
     assert fb.regs[R.CTRL.addr] == R.CTRL.encode(en=1)
 
 
-def test_compact_board():
-    """A compact board (FEATURES.compact = 1): the registers and fields it has work as on the full
-    board; writes to the others are refused with nothing written; info / status / dump say so. Like the
-    iCEstick's system it has a 12-bit carrier (CONFIG.cnt_width): PERIOD above 4095 is refused."""
-    fb = FakeBoard(compact=True, cnt_width=12)
+def test_tiny_trim_board():
+    """The iCEstick's board (FEATURES: tiny, trim = 1): the registers and fields it has work as on the full
+    board; commands and writes that need what it lacks are refused with a message naming it, nothing
+    written; info / status / dump say what was built. Its 12-bit carrier (CONFIG.cnt_width): PERIOD above
+    4095 is refused."""
+    fb = FakeBoard(features=config.TINY, trim=True, cnt_width=12)
     info = cmd(fb, "info")
     assert info.startswith(f"ID 0x53565057 (svpwm), register map {MAP_VERSION}, clock 48000000 Hz")
     assert "CntWidth 12" in info, info
-    assert info.endswith("compact variant: FREQ mode, continuous SVPWM, valley updates, no sync start, no MP "
-                         "(FEATURES.compact)"), info
+    assert info.endswith("build tiny (FEATURES.features 0x0001: freq); board cut (FEATURES.trim): no MP, "
+                         "CTRL.mode, CTRL.adc_trig, STATUS.sector, CARRIER, PERIOD_ACT, CMP_*"), info
     cmd(fb, "set-dt", "0.5")
     cmd(fb, "set-period", "--fsw", "20000")
     cmd(fb, "set-freq", "50")
@@ -335,16 +338,12 @@ def test_compact_board():
     cmd(fb, "start")
     assert [fb.regs[r.addr] for r in (R.DT, R.PERIOD, R.FREQ, R.M, R.CTRL)] == \
         [24, 1200, 107374, 0x7333, R.CTRL.encode(en=1, pol=2)]
-    n = len(fb.writes)                                 # one dead time: no DT.dtf / dtf_en on this board
-    with pytest.raises(ValueError, match="DT.dtf, DT.dtf_en: not on this board"):
-        cmd(fb, "set-dt", "0.5", "--dt-fall", "1")
-    assert len(fb.writes) == n
     assert R.MP.addr not in fb.regs                    # no MP register on this board
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35
-    cmd(fb, "write", "0x80", "1")                      # unmapped in both variants: as before
-    lo = fixed.LITE_MIN_PERIOD                         # the compact core's MinPeriod (SampleLead + 4)
-    assert ctl.MIN_PERIOD_COMPACT == lo and ctl.MIN_PERIOD == fixed.MIN_PERIOD
+    cmd(fb, "write", "0x80", "1")                      # unmapped in every build: as before
+    lo = fixed.latencies(config.TINY)["MIN_PERIOD"]    # the tiny build's MinPeriod (SampleLead + 4)
+    assert ctl.min_period(config.TINY) == lo == fixed.LITE_MIN_PERIOD and ctl.MIN_PERIOD == fixed.MIN_PERIOD
     with pytest.raises(ValueError, match=f"out of range {lo} .. 4095"):
         cmd(fb, "set-period", "--clocks", str(lo - 1))
     with pytest.raises(ValueError, match=f"out of range {lo} .. 4095"):
@@ -352,31 +351,80 @@ def test_compact_board():
     cmd(fb, "set-period", "--clocks", str(lo))
     assert fb.regs[R.PERIOD.addr] == lo
     st = dict(line.split(None, 1) for line in cmd(fb, "status").splitlines())
-    assert st["variant"] == "compact" and st["mode"] == "freq" and st["period_act_clocks"] == "-"
+    assert (st["build"], st["trim"], st["mode"], st["period_act_clocks"]) == ("tiny", "1", "freq", "-")
     assert st["mp_clocks"] == "-" and st["mp_us"] == "-"
-    assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == [r.name for r in R.variant(True)]
-    absent = [r for r in R.REGISTERS if not r.compact]
+    assert [line.split()[1] for line in cmd(fb, "dump").splitlines()] == \
+        [r.name for r in R.variant(config.TINY, True)]
+    absent = [r for r in R.REGISTERS if not R.built(r, config.TINY, True)]
     assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
                                         "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP", "DTC"}
-    refused = [["set-mode", "vf"], ["set-mode", "freq"], ["set-mode", "freq", "--dpwm", "svpwm"], ["set-mp", "0.25"],
-               ["set-mode", "freq", "--om", "sixstep"], ["set-dtc", "on"], ["set-carry", "off"],
-               ["write", "CTRL.mode", "0"], ["write", "CTRL.sync_en", "1"], ["write", "ctrl.adc_trig", "1"],
-               ["write", "CTRL", "0x101"], ["write", "CTRL", "0x2"], ["write", "CTRL", "-1"]]
-    refused += [["write", r.name, "0"] for r in absent] + [["write", f"0x{r.addr:x}", "1"] for r in absent]
-    refused += [["write", f"{r.name}.{f.name}", "1"] for r in absent for f in r.fields if f.writable]
+    word = "FEATURES = 0x80000001, tiny"
+    refused = {  # command -> what the message names
+        ("set-mode", "vf"): "mode vf: not on this board (no vf;",
+        ("set-mode", "freq"): "CTRL.mode: not on this board (board cut: FEATURES.trim = 1;",
+        ("set-mode", "freq", "--dpwm", "svpwm"): "CTRL.mode: not on this board (board cut",
+        ("set-mode", "freq", "--om", "sixstep"): "--om sixstep: not on this board (no sixstep;",
+        ("set-mode", "freq", "--upd", "peak"): "--upd peak: not on this board (no upd;",
+        ("set-mp", "0.25"): "MP: not on this board (board cut",
+        ("set-dtc", "on"): "set-dtc: not on this board (no dtc;",
+        ("set-carry", "off"): "set-carry: not on this board (no carry;",
+        ("set-dt", "0.5", "--dt-fall", "1"): "--dt-fall: not on this board (no dtf;",
+        ("write", "CTRL.mode", "0"): "CTRL.mode: not on this board (board cut",
+        ("write", "CTRL.sync_en", "1"): "CTRL.sync_en: not on this board (no sync;",
+        ("write", "ctrl.adc_trig", "1"): "CTRL.adc_trig: not on this board (board cut",
+        ("write", "CTRL", "0x101"): "CTRL.mode: not on this board (board cut",
+        ("write", "CTRL", "0x2"): "CTRL.sync_en: not on this board (no sync;",
+        ("write", "THETA", "0"): "THETA: not on this board (no polar or dq;",
+        ("write", "0x1c", "1"): "V1: not on this board (no ab or dq;",
+        ("write", "VF_MMAX.vf_mmax", "1"): "VF_MMAX: not on this board (no vf;",   # the whole register
+    }
+    refused |= {("write", r.name, "0"): f"{r.name}: not on this board" for r in absent}
+    refused |= {("write", f"0x{r.addr:x}", "1"): f"{r.name}: not on this board" for r in absent}
+    refused |= {("write", f"{r.name}.{f.name}", "1"): f"{r.name}: not on this board"
+                for r in absent for f in r.fields if f.writable}
     before = dict(fb.regs)
     fb.writes.clear()
-    for argv in refused:
-        with pytest.raises(ValueError, match="not on this board \\(compact variant"):
+    for argv, msg in refused.items():
+        with pytest.raises(ValueError) as e:
             cmd(fb, *argv)
+        assert str(e.value).startswith(msg) and word in str(e.value), (argv, str(e.value))
     assert fb.writes == [] and fb.regs == before
     with pytest.raises(ValueError, match=r"CTRL.mode, CTRL.dpwm: not on this board"):
         cmd(fb, "write", "CTRL", hex(R.CTRL.encode(mode=1, dpwm=1, en=1)))
-    # the same commands on a full board (and on a 2.1 board without FEATURES) are accepted
-    for fb in (FakeBoard(), FakeBoard(version=0x0002_0001)):
-        for argv in refused:
+    # the same commands on a full board are accepted; a board of map 2.x (FEATURES.compact) is refused
+    fb = FakeBoard()
+    for argv in refused:
+        cmd(fb, *argv)
+    assert fb.regs[R.THETA.addr] == 1 and fb.regs[R.FEATURES.addr] == config.FULL
+    with pytest.raises(ctl.ProtocolError, match=r"register map version 2.4 is not supported \(this tool: 3.x\)"):
+        cmd(FakeBoard(version=0x0002_0004), "set-mode", "vf")
+
+
+def test_minimal_board():
+    """A build without some features (minimal: POLAR only): its commands work, the others are refused
+    naming the feature; MinPeriod is the build's."""
+    fb = FakeBoard(features=config.CONFIGS["minimal"])
+    assert cmd(fb, "set-mode", "polar") == "CTRL.mode = 2"
+    cmd(fb, "write", "THETA", "0x4000")
+    cmd(fb, "set-mp", "0.25")
+    assert [fb.regs[r.addr] for r in (R.CTRL, R.THETA, R.MP)] == [R.CTRL.encode(mode=2), 0x4000, 12]
+    for argv, msg in {("set-freq", "50"): "set-freq: not on this board (no freq or vf;",
+                      ("set-mode", "dq"): "mode dq: not on this board (no dq;",
+                      ("set-mode", "alphabeta"): "mode alphabeta: not on this board (no ab;",
+                      ("set-mode", "polar", "--dpwm", "dpwm1"): "--dpwm dpwm1: not on this board (no dpwm;",
+                      ("write", "V2", "1"): "V2: not on this board (no ab or dq;",
+                      ("write", "CTRL", "0x10200"): "CTRL.dpwm: not on this board (no dpwm;"}.items():
+        n = len(fb.writes)
+        with pytest.raises(ValueError) as e:
             cmd(fb, *argv)
-        assert fb.regs[R.THETA.addr] == 1 and not fb.regs[R.FEATURES.addr]
+        assert str(e.value).startswith(msg) and "FEATURES = 0x00002004, minimal); nothing written" in str(e.value), \
+            str(e.value)
+        assert len(fb.writes) == n
+    lo = ctl.min_period(config.CONFIGS["minimal"])
+    assert lo == fixed.latencies(config.CONFIGS["minimal"])["MIN_PERIOD"] < ctl.MIN_PERIOD
+    with pytest.raises(ValueError, match=f"out of range {lo} .. 65535"):
+        cmd(fb, "set-period", "--clocks", str(lo - 1))
+    cmd(fb, "set-period", "--clocks", str(lo))
 
 
 def test_no_answer():

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Test harness: one bus adapter (Bus = 0 AXI4-Lite, 1 Wishbone pipelined, 2 Wishbone classic) + the
-// generated register block (full or, Compact = 1, compact variant), without the core: the register
+// generated register block (the build Features, the board cut Trim), without the core: the register
 // outputs are harness outputs and the status inputs harness inputs, so that cocotb sees and drives
 // every field. Port names follow the cocotbext-axi ("s_axil_*") and cocotbext-wishbone ("wb_*")
 // conventions. Clock generated here.
@@ -12,7 +12,8 @@ module tb_svpwm_bus_regs #(
   parameter int         AddrWidth = 8,
   parameter int         GatePol   = 0,      // int here: -G / -P pass 32-bit values
   parameter int         ClkHz     = 0,      // CLK_HZ value
-  parameter int         Compact   = 0       // 1: the compact variant of the register block
+  parameter int         Features  = 32'h3fff, // the build (svpwm_pkg::Cfg*; int: -G / -P)
+  parameter int         Trim      = 0       // 1: the board cut of the register block
 ) (
   input  wire logic                 rst_n,
   // AXI4-Lite (Bus = 0)
@@ -89,7 +90,8 @@ module tb_svpwm_bus_regs #(
   end
 
   // register outputs, probed by cocotb as u_regs.<name>_o
-  svpwm_regs #(.AddrWidth(AddrWidth), .GatePol(2'(GatePol)), .ClkHz(ClkHz), .Compact(1'(Compact))) u_regs (
+  svpwm_regs #(.AddrWidth(AddrWidth), .GatePol(2'(GatePol)), .ClkHz(ClkHz), .Features(32'(Features)),
+              .Trim(1'(Trim))) u_regs (
     .clk_i(clk), .rst_ni(rst_n), .req_i(req), .we_i(we), .addr_i(addr), .wdata_i(wdata), .be_i(be),
     .rdata_o(rdata),
     .ctrl_en_o(), .ctrl_sync_en_o(), .ctrl_trip_cbc_o(), .ctrl_safe_lo_o(), .ctrl_pol_o(), .ctrl_lock_o(),

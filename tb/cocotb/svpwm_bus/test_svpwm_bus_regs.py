@@ -3,10 +3,11 @@
 
 Harness tb_svpwm_bus_regs.sv: the register outputs are probed in u_regs, the status inputs are driven
 from here. Every address, field, reset value and access kind comes from svpwm_model.regmap (generated
-from rdl/svpwm.rdl); nothing is typed twice. The compact variant (Compact = 1) is checked against
-R.variant(True): its registers and fields behave as in the full block, every other register and field
-reads 0, ignores writes and keeps its output at 0; FEATURES.compact reads the parameter. cocotb tests
-have no `test_` prefix (pytest does not collect them).
+from rdl/svpwm.rdl); nothing is typed twice. Builds (parameters Features, Trim): full, foc, minimal and
+the iCEstick's tiny build with the board cut (Trim = 1), each checked against R.variant(features, trim):
+its registers and fields behave as in the full block, every other register and field reads 0, ignores
+writes and keeps its output at 0; FEATURES reads the parameters (features, trim). cocotb tests have no
+`test_` prefix (pytest does not collect them).
 """
 from __future__ import annotations
 
@@ -19,12 +20,14 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge, Timer
 from cocotb.utils import get_sim_time
 from clocks import clock_cycles
 
+from svpwm_model import config
 from svpwm_model import regmap as R
 
 HERE = Path(__file__).resolve().parent
 ADDR_WIDTH = 8
 # ClkHz per bus variant (CLK_HZ reads it): 0 (not stated), a typical clock, the largest value
-CLK_HZ = {"axil": 48_000_000, "wb": 0, "wbc": 0x7FFF_FFFF, "wb_compact": 24_000_000}
+CLK_HZ = {"axil": 48_000_000, "wb": 0, "wbc": 0x7FFF_FFFF, "wb_tiny_trim": 24_000_000, "wb_minimal": 12_000_000,
+          "axil_foc": 96_000_000}
 CLK_NS = 10
 # harness status input bit -> STATUS field, in the harness's packing order
 STATUS_BITS = ["running", "sat", "cfg_err", "period_clamp", "freq_clamp", "fault", "tripped", "locked"]
@@ -40,9 +43,9 @@ class TB:
         # their RDL default (the CONFIG widths)
         self.params = {f.rst_param: f.reset for r in R.REGISTERS for f in r.fields if f.rst_param}
         self.params.update({"GatePol": int(os.environ["SVPWM_GATEPOL"]), "ClkHz": int(os.environ["SVPWM_CLKHZ"]),
-                            "Compact": int(os.environ["SVPWM_COMPACT"])})
-        self.compact = bool(self.params["Compact"])
-        self.map = R.variant(self.compact)               # the registers / fields this variant has
+                            "Features": int(os.environ["SVPWM_FEATURES"]), "Trim": int(os.environ["SVPWM_TRIM"])})
+        self.features, self.trim = self.params["Features"], bool(self.params["Trim"])
+        self.map = R.variant(self.features, self.trim)   # the registers / fields this build has
         self.by_addr = {r.addr: r for r in self.map}
         present = {(r.name, f.name) for r in self.map for f in r.fields}
         self.absent = [(r, f) for r in R.REGISTERS for f in r.fields          # outputs without storage
@@ -106,7 +109,8 @@ async def reset_values(dut):
     tb.check_absent_ports("after reset")
     assert R.ID.reset == 0x53565057 and await tb.bus.read(R.ID.addr) == 0x53565057
     assert await tb.bus.read(R.CLK_HZ.addr) == int(os.environ["SVPWM_CLKHZ"]), "CLK_HZ is not the ClkHz parameter"
-    assert await tb.bus.read(R.FEATURES.addr) == R.FEATURES.encode(compact=int(tb.compact)), "FEATURES.compact"
+    exp = R.FEATURES.encode(features=tb.features, trim=int(tb.trim))
+    assert await tb.bus.read(R.FEATURES.addr) == exp == tb.features | tb.trim << 31, "FEATURES"
 
 
 @cocotb.test()
@@ -126,7 +130,7 @@ async def readback_walking(dut):
             for f in r.fields:
                 if f.kind == "rw":
                     assert tb.port(f) == (p & f.mask) >> f.lsb, f"{r.name}.{f.name}: port {f.port} = 0x{tb.port(f):X}"
-            tb.check_absent_ports(f"after {r.name} = 0x{p:08X}")     # compact: CTRL's absent fields
+            tb.check_absent_ports(f"after {r.name} = 0x{p:08X}")     # e.g. CTRL's absent fields
         await tb.bus.write(r.addr, tb.expected_reset(r))
 
 
@@ -157,7 +161,7 @@ async def axil_channel_skew(dut):
 
 @cocotb.test()
 async def ro_and_reserved_ignore_writes(dut):
-    """RO registers ignore writes; reserved addresses (compact: also the registers it does not have,
+    """RO registers ignore writes; reserved addresses (also the registers the build does not have,
     whatever their live inputs) read 0 and ignore writes (no register changes, no aliasing, the
     outputs of absent fields stay 0)."""
     tb = TB(dut)
@@ -176,7 +180,7 @@ async def ro_and_reserved_ignore_writes(dut):
             await tb.bus.write(a, v)
             assert await tb.bus.read(a) == 0, f"reserved 0x{a:02X} reads non-zero after a write of 0x{v:08X}"
         tb.check_absent_ports(f"after a write to 0x{a:02X}")
-    for r in tb.rw_regs():                          # compact: absent fields of present registers
+    for r in tb.rw_regs():                          # absent fields of present registers
         absent = r.mask() ^ R.BY_NAME[r.name].mask()
         if absent:
             await tb.bus.write(r.addr, absent | before[r.name])
@@ -199,9 +203,10 @@ async def status_inputs(dut):
         assert got == {f.name: int(f.name == name) for f in R.STATUS.fields}, f"STATUS with {name}: {got}"
     for s in range(8):
         d.status.value = s << 8
-        assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["sector"] == s
+        exp = 0 if tb.trim else s                   # STATUS.sector: cut by Trim
+        assert R.STATUS.decode(await tb.bus.read(R.STATUS.addr))["sector"] == exp, f"sector {s}"
     live = [R.CARRIER, R.PERIOD_ACT, R.CMP_A, R.CMP_B, R.CMP_C]
-    if tb.compact:                  # not in the compact variant: 0 whatever the core drives
+    if tb.trim:                     # not in the trimmed register set: 0 whatever the core drives
         assert not any(r.addr in tb.by_addr for r in live)
         for v in (-1, 0x5555_5555_5555, 0xAAAA_AAAA_AAAA):
             d.carrier.value, d.period_act.value, d.cmp.value = v & 0x1FFFF, v & 0xFFFF, v & (2**48 - 1)
@@ -362,17 +367,24 @@ async def reset_clears_ack(dut):
 import pytest  # noqa: E402
 
 
-@pytest.mark.parametrize("bus, compact", [("axil", 0), ("wb", 0), ("wbc", 0), ("wb", 1)])
-def test_svpwm_bus_regs(sim, bus, compact):
+# (bus, configuration, Trim): the three bus adapters with the full map; foc and minimal (registers and
+# fields of the features they lack: 0); the iCEstick's tiny build with the board cut
+BUILDS = [("axil", "full", 0), ("wb", "full", 0), ("wbc", "full", 0), ("wb", "tiny", 1), ("wb", "minimal", 0),
+          ("axil", "foc", 0)]
+
+
+@pytest.mark.parametrize("bus, cfg, trim", BUILDS)
+def test_svpwm_bus_regs(sim, bus, cfg, trim):
     from simrun import REPO, run_sim
 
-    name = bus + ("_compact" if compact else "")
-    gate_pol = {"axil": 0, "wb": 2, "wbc": 1, "wb_compact": 1}[name]     # a non-zero GatePol reset too
+    name = bus + ("" if cfg == "full" else f"_{cfg}") + ("_trim" if trim else "")
+    gate_pol = {"axil": 0, "wb": 2, "wbc": 1, "wb_tiny_trim": 1, "wb_minimal": 3, "axil_foc": 2}[name]   # non-zero too
+    features = config.CONFIGS[cfg]
     run_sim(sim, toplevel="tb_svpwm_bus_regs",
-            sources=[REPO / "rtl/svpwm_regs.sv", REPO / "rtl/svpwm_axil_if.sv", REPO / "rtl/svpwm_wb_if.sv",
-                     HERE / "tb_svpwm_bus_regs.sv"],
+            sources=[REPO / "rtl/svpwm_pkg.sv", REPO / "rtl/svpwm_regs.sv", REPO / "rtl/svpwm_axil_if.sv",
+                     REPO / "rtl/svpwm_wb_if.sv", HERE / "tb_svpwm_bus_regs.sv"],
             test_module="test_svpwm_bus_regs", test_dir=HERE,
             parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "AddrWidth": ADDR_WIDTH, "GatePol": gate_pol,
-                        "ClkHz": CLK_HZ[name], "Compact": compact},
+                        "ClkHz": CLK_HZ[name], "Features": features, "Trim": trim},
             build_name=name, extra_env={"SVPWM_BUS": bus, "SVPWM_GATEPOL": gate_pol, "SVPWM_CLKHZ": CLK_HZ[name],
-                                        "SVPWM_COMPACT": compact})
+                                        "SVPWM_FEATURES": features, "SVPWM_TRIM": trim})

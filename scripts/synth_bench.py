@@ -136,6 +136,11 @@ def main(argv=None) -> int:
                   "run): "
                   f"{cp['delay_ns']} ns, {cp['logic_levels']} logic levels, {cp['routing_ns']} ns routing\n"
                   f"  from {cp['from']}\n  via  {' -> '.join(cp['via'])}\n  to   {cp['to']}")
+    print("\nmarkdown (README / fpga/ice40/README.md):\n| configuration | device | logic cells (core) | FF | EBR | DSP | "
+          "sample lead | Fmax median / worst |\n|---|---|---|---|---|---|---|---|")
+    for r in results:
+        print(f"| `{r['config']}` | {r['device'].upper()} | {r['lc_core']} | {r['ff_core']} | {r['ebr']} | {r['dsp']} | "
+              f"{r['lead']} | {r['fmax_mhz']['median']:.2f} / {r['fmax_mhz']['worst']:.2f} MHz |")
     print(f"written {a.out.relative_to(REPO) if a.out.is_relative_to(REPO) else a.out}")
     return 0
 

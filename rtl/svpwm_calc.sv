@@ -79,10 +79,8 @@ module svpwm_calc #(
 );
   localparam int EW = DtWidth + 2;            // carry width (signed): |carry| <= ceil(thr / 2) <= 2^DtWidth
   localparam bit Dsp      = svpwm_pkg::has(Features, svpwm_pkg::FeatDsp);
-  localparam bit HasTheta = svpwm_pkg::has(Features, svpwm_pkg::FeatPolar)
-                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
-  localparam bit HasXy    = svpwm_pkg::has(Features, svpwm_pkg::FeatAb)
-                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
+  localparam bit HasTheta = svpwm_pkg::has_theta(Features);
+  localparam bit HasXy    = svpwm_pkg::has_xy(Features);
   localparam bit HasVf    = svpwm_pkg::has(Features, svpwm_pkg::FeatVf);
   localparam bit HasDpwm  = svpwm_pkg::has(Features, svpwm_pkg::FeatDpwm);
   localparam bit HasSix   = svpwm_pkg::has(Features, svpwm_pkg::FeatSixstep);

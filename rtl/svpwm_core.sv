@@ -142,11 +142,9 @@ module svpwm_core #(
   localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Features);
 `endif
   // the features of this build (svpwm_pkg Feat*; the calculator reads its own from Features)
-  localparam bit HasAcc   = svpwm_pkg::has(Features, svpwm_pkg::FeatFreq)
-                            || svpwm_pkg::has(Features, svpwm_pkg::FeatVf);   // the phase accumulator
+  localparam bit HasAcc   = svpwm_pkg::has_acc(Features);      // the phase accumulator
   localparam bit HasVf    = svpwm_pkg::has(Features, svpwm_pkg::FeatVf);
-  localparam bit HasXy    = svpwm_pkg::has(Features, svpwm_pkg::FeatAb)
-                            || svpwm_pkg::has(Features, svpwm_pkg::FeatDq);
+  localparam bit HasXy    = svpwm_pkg::has_xy(Features);
   localparam bit HasDpwm  = svpwm_pkg::has(Features, svpwm_pkg::FeatDpwm);
   localparam bit HasSix   = svpwm_pkg::has(Features, svpwm_pkg::FeatSixstep);
   localparam bit HasDtc   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtc);
@@ -155,7 +153,8 @@ module svpwm_core #(
   localparam bit HasUpd   = svpwm_pkg::has(Features, svpwm_pkg::FeatUpd);
   localparam bit HasPresc = svpwm_pkg::has(Features, svpwm_pkg::FeatPresc);
   localparam bit HasSync  = svpwm_pkg::has(Features, svpwm_pkg::FeatSync);
-  if ((Features & ~svpwm_pkg::CfgAll) != 0 || (Features & 32'h1f) == 0) begin : gen_bad_features
+  if ((Features & ~svpwm_pkg::CfgAll) != 0 || (Features & svpwm_pkg::ModeFeatures) == 0)
+  begin : gen_bad_features
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
     initial $fatal(1, "svpwm_core: Features 'h%0h: unknown bits or no input mode (%m)", Features);
 `else              // at elaboration (Yosys formats $display only, then stops at $error)

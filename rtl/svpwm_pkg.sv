@@ -29,6 +29,7 @@ package svpwm_pkg;
   localparam logic [31:0] CfgMinimal = 32'h2004;
   localparam logic [31:0] CfgTiny = 32'h0001;
   localparam logic [31:0] CfgAll = 32'h3fff;
+  localparam logic [31:0] ModeFeatures = 32'h001f;   // every build has one
   // the features the calculator's program depends on (config.CALC); a mode a build lacks reaches the
   // calculator as this invalid code (the zero vector and err_o)
   localparam logic [31:0] CalcFeatures = 32'h21ff;
@@ -36,6 +37,17 @@ package svpwm_pkg;
 
   function automatic bit has(input logic [31:0] features, input int feat);
     has = ((features >> feat) & 1) != 0;
+  endfunction
+  // the feature groups the core and the calculator derive (config.has_theta, has_xy, has_acc):
+  // theta_i read (POLAR or DQ), v1_i / v2_i read (AB or DQ), the phase accumulator (FREQ or VF)
+  function automatic bit has_theta(input logic [31:0] features);
+    has_theta = has(features, FeatPolar) || has(features, FeatDq);
+  endfunction
+  function automatic bit has_xy(input logic [31:0] features);
+    has_xy = has(features, FeatAb) || has(features, FeatDq);
+  endfunction
+  function automatic bit has_acc(input logic [31:0] features);
+    has_acc = has(features, FeatFreq) || has(features, FeatVf);
   endfunction
 
   // clocks from svpwm_calc start_i to done_o of a build's program (calc_prog.calc_latency); 0: no program

@@ -188,12 +188,13 @@ def critical_path(rep: dict, routed: Path | None = None) -> dict | None:
 
 def via_nets(segs: list[dict]) -> list[str]:
     """The path's routed nets, carry-chain runs collapsed ("name ... xN"), for a readable report."""
+    return _collapse(s["net"].split("_SB_")[0] for s in segs if s.get("type") == "routing" and s.get("net"))
+
+
+def _collapse(keys) -> list[str]:
+    """Runs of one key collapsed to "key xN" (a carry chain reads as one entry)."""
     out: list[str] = []
-    for s in segs:
-        net = s.get("net")
-        if s.get("type") != "routing" or not net:
-            continue
-        key = net.split("_SB_")[0]
+    for key in keys:
         if out and out[-1].split(" x")[0] == key:
             n = int(out[-1].split(" x")[1]) + 1 if " x" in out[-1] else 2
             out[-1] = f"{key} x{n}"
@@ -214,17 +215,8 @@ def _src_loc(locs: list[str], base: Path) -> str | None:
 
 def via_sources(segs: list[dict], base: Path) -> list[str]:
     """The source lines of the path's routed nets (nextpnr's "sources"), runs collapsed ("file:line xN")."""
-    out: list[str] = []
-    for s in segs:
-        key = _src_loc(s.get("sources") or [], base) if s.get("type") == "routing" else None
-        if not key:
-            continue
-        if out and out[-1].split(" x")[0] == key:
-            n = int(out[-1].split(" x")[1]) + 1 if " x" in out[-1] else 2
-            out[-1] = f"{key} x{n}"
-        else:
-            out.append(key)
-    return out
+    keys = (_src_loc(s.get("sources") or [], base) if s.get("type") == "routing" else None for s in segs)
+    return _collapse(k for k in keys if k)
 
 
 def path_sources(segs: list[dict], routed: Path) -> dict:

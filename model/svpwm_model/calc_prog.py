@@ -527,7 +527,7 @@ class Machine:
         dpwm = inp.get("dpwm", 0) if config.has(f, "dpwm") else 0
         # the inputs of features the build lacks are not read (the RTL's input multiplexer has 0 there)
         has = lambda n: config.has(f, n)                   # noqa: E731
-        th_in, xy_in, vf_in = has("polar") or has("dq"), has("ab") or has("dq"), has("vf")
+        th_in, xy_in, vf_in = config.has_theta(f), config.has_xy(f), has("vf")
         ins = [inp.get("m", 0), inp.get("theta", 0) if th_in else 0, inp.get("v1", 0) if xy_in else 0,
                inp.get("v2", 0) if xy_in else 0] + \
             [inp.get(n, 0) if vf_in else 0 for n in ("vf_boost", "vf_slope", "vf_mmax", "fabs")] + \
@@ -719,9 +719,9 @@ def build(features: int = config.FULL, tiny: bool | None = None) -> Program:
     compact = features == config.TINY if tiny is None else tiny
     g = Builder(features, compact)
     dsp = g.dsp
-    th_modes = has("polar") or has("dq")                  # theta_i -> sector, angle
+    th_modes = config.has_theta(f)                        # theta_i -> sector, angle
     ang_modes = has("freq") or has("vf") or has("polar")  # the polar dwell times T1, T2 of (m, angle)
-    xy_modes = has("ab") or has("dq")                     # X, Y, Z -> sector, dwell times
+    xy_modes = config.has_xy(f)                           # X, Y, Z -> sector, dwell times
     sixstep = has("sixstep") and ang_modes
     shifted = has("dpwm") or has("dtc") or has("carry")   # C + sh + the compensation / carry
     def sines(sb_addr, sa_addr, tmp):

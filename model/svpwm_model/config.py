@@ -48,6 +48,7 @@ def names(features: int) -> list[str]:
 MODES = ("freq", "vf", "polar", "ab", "dq")          # index = mode code (fixed.MODE_*)
 # the features the calculator's program depends on (the others live in svpwm_core around it)
 CALC = mask("freq", "vf", "polar", "ab", "dq", "dpwm", "sixstep", "dtc", "carry", "dsp")
+MODE_MASK = mask(*MODES)                             # at least one of them in every build
 
 FULL = ALL
 CONFIGS: dict[str, int] = {
@@ -84,6 +85,22 @@ def modes(features: int) -> tuple[int, ...]:
 
 def mode_built(features: int, mode: int) -> bool:
     return 0 <= mode < len(MODES) and has(features, MODES[mode])
+
+
+# the feature groups the core and the calculator derive (svpwm_pkg has_theta, has_xy, has_acc)
+def has_theta(features: int) -> bool:
+    """theta_i is read: POLAR or DQ."""
+    return has(features, "polar") or has(features, "dq")
+
+
+def has_xy(features: int) -> bool:
+    """v1_i / v2_i are read (X, Y, Z projections): AB or DQ."""
+    return has(features, "ab") or has(features, "dq")
+
+
+def has_acc(features: int) -> bool:
+    """The phase accumulator is built (freq_i read): FREQ or VF."""
+    return has(features, "freq") or has(features, "vf")
 
 
 def parse(spec: str | int) -> int:

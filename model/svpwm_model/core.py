@@ -123,7 +123,7 @@ def as_built(u: Inputs, features: int) -> Inputs:
     cfg_err_o); the tiny build (TRANSITIONAL: the compact core's own datapath) reads no mode: FREQ."""
     has = lambda n: config.has(features, n)               # noqa: E731
     mode = calc_prog.inp_mode({"mode": u.mode}, features)
-    return replace(u, mode=mode, freq=u.freq if has("freq") or has("vf") else 0,
+    return replace(u, mode=mode, freq=u.freq if config.has_acc(features) else 0,
                    dpwm=u.dpwm if has("dpwm") else fixed.DPWM_OFF, upd=u.upd if has("upd") else fixed.UPD_VALLEY,
                    presc=u.presc if has("presc") else 0, dtf=u.dtf if has("dtf") else None,
                    dtc=u.dtc if has("dtc") else 0, isign=u.isign if has("dtc") else 0,

@@ -149,9 +149,9 @@ from svpwm_model import config, fixed
 from svpwm_model.calc_prog import calc_latency, expect_carry as calc_expect
 
 # the simulator process learns its variant from the pytest item (extra_env); the pytest process does not need it
-COMPACT = os.environ.get("SVPWM_CALC_COMPACT", "0") == "1"
-SERIAL = os.environ.get("SVPWM_CALC_DSP", "") == "0"      # Compact = 0 on the serial multiplier (Dsp = 0)
 FEATURES = int(os.environ.get("SVPWM_CALC_FEATURES", str(config.FULL)))   # the build (svpwm_calc Features)
+COMPACT = FEATURES == config.TINY                          # the tiny build (its own serial datapath)
+SERIAL = not COMPACT and not config.has(FEATURES, "dsp")   # an engine program on the serial multiplier
 # clocks from start_i (cycle c) to done_o (cycle c + LATENCY): the one place the test states it (the serial
 # build: the length of the full program on the serial unit, calc_prog.calc_latency(its features))
 LATENCY = calc_latency(FEATURES) if SERIAL else {False: fixed.SAMPLE_LEAD - 1, True: fixed.LITE_SAMPLE_LEAD - 1}[COMPACT]
@@ -895,12 +895,11 @@ async def abort(dut):
 # one directory per item.
 
 BUILDS = {
-    "full_cnt16":    {"Compact": 0, "Features": config.FULL, "CntWidth": 16, "DtWidth": 10},
-    "full_cnt12":    {"Compact": 0, "Features": config.FULL, "CntWidth": 12, "DtWidth": 10},
-    "full_serial":   {"Compact": 0, "Dsp": 0, "Features": config.FULL & ~config.mask("dsp"), "CntWidth": 16,
-                      "DtWidth": 10},
-    "compact_cnt16": {"Compact": 1, "Features": config.TINY, "CntWidth": 16, "DtWidth": 10},
-    "compact_cnt12": {"Compact": 1, "Features": config.TINY, "CntWidth": 12, "DtWidth": 10},
+    "full_cnt16":    {"Features": config.FULL, "CntWidth": 16, "DtWidth": 10},
+    "full_cnt12":    {"Features": config.FULL, "CntWidth": 12, "DtWidth": 10},
+    "full_serial":   {"Features": config.FULL & ~config.mask("dsp"), "CntWidth": 16, "DtWidth": 10},
+    "compact_cnt16": {"Features": config.TINY, "CntWidth": 16, "DtWidth": 10},
+    "compact_cnt12": {"Features": config.TINY, "CntWidth": 12, "DtWidth": 10},
 }
 SCENARIOS = {
     "directed":  ["directed_freq", "directed_corners", "directed_dtc", "directed_carry"],
@@ -913,7 +912,7 @@ SCENARIOS = {
 # builds interleaved: pytest-xdist hands the first items out round robin, so the two workers start on
 # different builds (the Verilator items of one build share its build directory, see below)
 # (the serial build runs only its own short group: the same program, a slower multiplier)
-ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Compact"] and s == "modes")
+ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Features"] == config.TINY and s == "modes")
          and (b == "full_serial") == (s == "serial")]
 
 
@@ -922,8 +921,7 @@ def test_svpwm_calc(sim, build, scenario):
     here = Path(__file__).parent
     run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
             test_module="test_svpwm_calc", test_dir=here,
-            parameters={k: v for k, v in BUILDS[build].items() if k not in ("Compact", "Dsp")},
+            parameters=BUILDS[build],
             build_name=build if sim == "verilator" else f"{build}-{scenario}", testcase=SCENARIOS[scenario],
-            extra_env={"SVPWM_CALC_COMPACT": BUILDS[build]["Compact"], "SVPWM_CALC_DSP": BUILDS[build].get("Dsp", ""),
-                       "SVPWM_CALC_FEATURES": str(BUILDS[build]["Features"])},
+            extra_env={"SVPWM_CALC_FEATURES": str(BUILDS[build]["Features"])},
             vpi_top_only=True)

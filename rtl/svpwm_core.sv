@@ -193,23 +193,28 @@ module svpwm_core #(
 `endif
   end
 
-  // ---- run: a register, en_i of the clock before (the modulator starts one clock after en_i rises:
+  // ---- run_q: a register, en_i of the clock before (the modulator starts one clock after en_i rises:
   // fixed.START_DELAY; en_i low still turns the gates off on the next clock: the legs and poles read
   // en_i), but not in the first ArmClocks (4) clocks after reset, so that the configuration registers,
   // the lowest legal period, the clamped period and then the idle loads (period clamped for the dead
   // time, frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse
-  // (another core's sync_o: the clock before its valley). Every enable of the core reads run from a
-  // flip-flop.
+  // (another core's sync_o: the clock before its valley). Every enable of the core reads run_q (or its
+  // twin upd_run) from a flip-flop.
   logic [svpwm_pkg::ArmClocks-2:0] armed_q;
-  logic       run_d, run;
+  logic       run_d, run_q;
+  // upd_run: for the update logic below (take, pending, valid, the active dead time: ~120 enables) a
+  // second run register, equal to run_q in every clock (formal), with its own feedback so that synthesis
+  // keeps it: one run net for all enables was the iCEBreaker's worst path at 48 MHz (run -> pending_q,
+  // 23 ns). Not in the tiny build (the HX1K is full and fast enough): there upd_run is run_q.
+  logic       upd_run;
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       armed_q <= '0;
-      run     <= 1'b0;
+      run_q   <= 1'b0;
     end else begin
       armed_q <= {armed_q[svpwm_pkg::ArmClocks-3:0], 1'b1};
-      run     <= run_d;
+      run_q   <= run_d;
     end
   end
 
@@ -222,7 +227,22 @@ module svpwm_core #(
   assign upd_in   = HasUpd ? upd_i : 2'd0;
   assign presc_in = HasPresc ? presc_i : 8'd0;
 
-  assign run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (run || !sync_en || sync_i);
+  assign run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (run_q || !sync_en || sync_i);
+
+  if (!svpwm_pkg::is_tiny(Features)) begin : gen_upd_run
+    logic upd_run_d, upd_run_q;
+
+    assign upd_run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (upd_run_q || !sync_en || sync_i);
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) upd_run_q <= 1'b0;
+      else         upd_run_q <= upd_run_d;
+    end
+
+    assign upd_run = upd_run_q;
+  end else begin : gen_one_run
+    assign upd_run = run_q;
+  end
 
   // ---- configuration registers, locked by lock_i until reset ----------------------------------
   logic               locked_q;
@@ -253,7 +273,7 @@ module svpwm_core #(
         mp_cfg_q  <= mp_i;
         cbc_q     <= trip_cbc_i;
         safe_lo_q <= safe_lo_i;
-        if (!run) pol_q <= pol_i;
+        if (!run_q) pol_q <= pol_i;
       end
     end
   end
@@ -262,7 +282,7 @@ module svpwm_core #(
   // so both change together at a valley, and so does "dtf > dt" (dfg_*), which selects the larger one
   // for the calculator's minimum-pulse threshold thr = max(dt, dtf) + mp: a 10-bit compare in front of
   // that adder would not meet 48 MHz on the UP5K, and a registered max or thr at every stage adds 30
-  // flip-flops to the enables the run register drives (the board's slowest path). A build without DTF
+  // flip-flops to the enables the run_q register drives (the board's slowest path). A build without DTF
   // has one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not
   // built) and, without UPD too, its calculator reads dt_next_q + mp_next_q.
   logic [DtWidth-1:0] dtf_cfg, dtx_cfg, dtf_act;
@@ -364,12 +384,12 @@ module svpwm_core #(
 
   // idle: the clamped port, registered (the carrier's period and period - 1 then start from flip-flops,
   // not from en_i, the period compare and its mux); the core idles >= 4 clocks after reset (armed_q)
-  assign period_load = run ? period_next_q : period_clamped_q;
+  assign period_load = run_q ? period_next_q : period_clamped_q;
 
   svpwm_carrier #(.CntWidth(CntWidth), .MinPeriod(MinPeriod)) u_carrier (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
-    .run_i      (run),
+    .run_i      (run_q),
     .period_i   (period_load),
     .count_o    (count),
     .up_o       (up),
@@ -387,10 +407,10 @@ module svpwm_core #(
   logic                vps_d, vps_q, pps_d, pps_q, vps, pps;
 
   assign pl2_d = load ? period_load - CntWidth'(SampleLead + 2) : pl2_q;
-  assign vps_d = run && !up && count == CntWidth'(SampleLead + 2);
-  assign pps_d = run && up && count == pl2_q;
-  assign vps   = run && vps_q;
-  assign pps   = run && pps_q;
+  assign vps_d = run_q && !up && count == CntWidth'(SampleLead + 2);
+  assign pps_d = run_q && up && count == pl2_q;
+  assign vps   = run_q && vps_q;
+  assign pps   = run_q && pps_q;
 
   // ---- update control: which opportunities update (upd, prescaler), forced updates --------------
   localparam logic [1:0] UpdPeak = 2'd1, UpdBoth = 2'd2;   // 2'd0: valley
@@ -417,13 +437,13 @@ module svpwm_core #(
       cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
       cz_d  = cnt_q >= presc_q;
     end
-    if (!run || vps) begin                 // update mode and prescaler: before each valley (or idle)
+    if (!run_q || vps) begin                 // update mode and prescaler: before each valley (or idle)
       updv_d    = upd_in != UpdPeak;       // an invalid code (3) is a valley update (+ upd_err)
       updp_d    = upd_in == UpdPeak || upd_in == UpdBoth;
       upd_err_d = upd_in == 2'd3;
       presc_d   = presc_in;
     end
-    if (!run) begin
+    if (!run_q) begin
       cnt_d = '0;
       cz_d  = 1'b1;
     end
@@ -474,14 +494,14 @@ module svpwm_core #(
   logic [2:0]            acc_sector;
   logic [PhaseWidth-1:0] acc_angle;
 
-  // the carry-select adder (the one 35-bit chain was the iCEBreaker's worst path at 48 MHz), but in the
-  // tiny build: the HX1K has no room for its 40 LC and its chain is fast enough there
+  // the split adder (its one chain ends in flip-flops: the chains behind enables were the iCEBreaker's
+  // worst paths at 48 MHz), but in the tiny build (the one chain: fewer cells, and the HX1K is fast)
   if (HasAcc) begin : gen_phase
     svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth),
-                      .CarrySelect(!svpwm_pkg::is_tiny(Features))) u_phase (
+                      .Split(!svpwm_pkg::is_tiny(Features))) u_phase (
       .clk_i    (clk_i),
       .rst_ni   (rst_ni),
-      .run_i    (run),
+      .run_i    (run_q),
       .step_i   (freq_q),           // the sampled frequency word steps the angle from the sample on
       .sector_o (acc_sector),
       .angle_o  (acc_angle)
@@ -560,8 +580,8 @@ module svpwm_core #(
   svpwm_calc #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
-    .start_i    (start_q && run),
-    .abort_i    (!run),
+    .start_i    (start_q && run_q),
+    .abort_i    (!run_q),
     .mode_i     (mode_q),
     .sector_i   (acc_sector),
     .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held at 0
@@ -606,7 +626,7 @@ module svpwm_core #(
 
   // new compare values are taken at a load strobe (the clock before a valley or a peak) exactly when
   // the computation of an update finishes (SampleLead is the pipeline length)
-  assign take = run && pending_q && snap_done && (load || pre_peak);
+  assign take = upd_run && pending_q && snap_done && (load || pre_peak);
 
   always_comb begin
     freq_d         = freq_q;
@@ -630,11 +650,11 @@ module svpwm_core #(
     pending_d      = pending_q;
     car_d          = car_q;
     car_per_d      = car_per_q;
-    if (!run || event_now) begin          // the frequency word steps the angle from the sample on
+    if (!run_q || event_now) begin          // the frequency word steps the angle from the sample on
       freq_d         = freq_clamped;
       freq_clamp_d   = freq_over;
     end
-    if (!run || vps) begin                // period, dead time, minimum pulse: before every valley
+    if (!run_q || vps) begin                // period, dead time, minimum pulse: before every valley
       period_next_d  = period_clamped_q;
       dt_next_d      = dt_use_q;
       dtf_next_d     = dtf_use_q;
@@ -643,7 +663,7 @@ module svpwm_core #(
       period_clamp_d = period_under_q;
     end
     if (start_q) pending_d = 1'b1;
-    if (!run) begin                        // idle: nothing valid, dead time follows the configuration
+    if (!upd_run) begin                    // idle: nothing valid, dead time follows the configuration
       dt_d      = dt_use_q;
       dtf_d     = dtf_use_q;
       dfg_d     = dfg_use_q;
@@ -671,7 +691,7 @@ module svpwm_core #(
         car_per_d = calc_period_q;
       end
     end
-    if (!run || trip_sync) car_d = '0;     // a stop or a trip: no carry into the next start
+    if (!upd_run || trip_sync) car_d = '0; // a stop or a trip: no carry into the next start
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -724,7 +744,7 @@ module svpwm_core #(
       pl2_q          <= pl2_d;
       vps_q          <= vps_d;
       pps_q          <= pps_d;
-      start_q        <= run && event_now;
+      start_q        <= run_q && event_now;
       ev_valley_q    <= vps;
       pending_q      <= pending_d;
       calc_period_q  <= calc_period_d;
@@ -763,7 +783,7 @@ module svpwm_core #(
   svpwm_compare #(.CntWidth(CntWidth)) u_compare (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .run_i   (en_i && run && valid_q),   // en_i: the poles stop with the gates
+    .run_i   (en_i && run_q && valid_q),   // en_i: the poles stop with the gates
     .count_i (count),
     .up_i    (up),
     .cmp_i   (cmp_q),
@@ -791,7 +811,7 @@ module svpwm_core #(
     deadtime #(.DtWidth(DtWidth), .HoldIn(ph != 0)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run: formal)
+      .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run_q: formal)
       .brake_i (brake),
       .pole_i  (pole[ph]),
       .dt_i    (dt_q),              // deadtime reads them a clock ahead: new dead times and minimum
@@ -838,7 +858,7 @@ module svpwm_core #(
   assign sector_o       = sector_q;
   assign cmp_o          = cmp_q;
   assign period_o       = period_act;
-  assign running_o      = en_i && run && valid_q;
+  assign running_o      = en_i && run_q && valid_q;
   assign sat_o          = sat_q;
   assign cfg_err_o      = err_q || upd_err_q;
   assign period_clamp_o = period_clamp_q;
@@ -852,10 +872,12 @@ module svpwm_core #(
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
 
+  always_comb if (rst_ni) assert (upd_run == run_q);    // the twin run register
+
   logic f_enabled_q;                                  // the core has run since reset
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni)   f_enabled_q <= 1'b0;
-    else if (run)  f_enabled_q <= 1'b1;
+    else if (run_q)  f_enabled_q <= 1'b1;
   end
 
   logic [2:0] f_hi, f_lo;                             // gate on/off at the pins, polarity undone
@@ -876,7 +898,7 @@ module svpwm_core #(
   always_comb if (rst_ni) assert (count <= period_act && period_act != '0);
   always_comb if (rst_ni) assert (period_next_q >= CntWidth'(MinPeriod));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run));
+    if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run_q));
     if (dt_q != $past(dt_q) || dtf_act != $past(dtf_act) || mp_q != $past(mp_q)) assert ($past(load));
   end
   // without the update modes the calculator reads period_next_q / dt_next_q + mp_next_q: valley updates only
@@ -885,7 +907,7 @@ module svpwm_core #(
   always_comb if (rst_ni) assert (cz_q == (cnt_q == '0));
   always_comb if (!HasUpd && rst_ni && start_q) assert (ev_valley_q);
   // the poles are valid only while the core runs (the legs' enable reads en_i and pole_valid alone)
-  always_comb if (rst_ni && pole_valid) assert (run);
+  always_comb if (rst_ni && pole_valid) assert (run_q);
   // a locked configuration does not change
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
     assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && dtf_cfg_q == $past(dtf_cfg_q) && mp_cfg_q == $past(mp_cfg_q)

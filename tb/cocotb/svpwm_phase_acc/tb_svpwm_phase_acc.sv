@@ -7,7 +7,7 @@
 module tb_svpwm_phase_acc #(
   parameter int PhaseWidth = 34,
   parameter int FreqWidth  = 24,
-  parameter bit CarrySelect = 1'b1
+  parameter bit Split = 1'b1
 ) (
   input  logic                        rst_ni,
   input  logic                        run_i,
@@ -29,7 +29,7 @@ module tb_svpwm_phase_acc #(
   svpwm_phase_acc #(
     .PhaseWidth (PhaseWidth),
     .FreqWidth  (FreqWidth),
-    .CarrySelect(CarrySelect)
+    .Split(Split)
   ) u_dut (
     .clk_i    (clk),
     .rst_ni   (rst_ni),

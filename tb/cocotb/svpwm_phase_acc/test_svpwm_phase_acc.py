@@ -2,8 +2,8 @@
 """svpwm_phase_acc against the golden model fixed.angle_step (exact integers, compared with ==).
 
 Four builds: the core's default widths (PhaseWidth 34, FreqWidth 24) and a small one (10 / 8) in which
-every step wraps a sector within a few clocks, each with the carry-select adder svpwm_core uses and with the
-one-chain adder (CarrySelect 0). fixed.angle_step works on the model's PHASE_WIDTH (34)
+every step wraps a sector within a few clocks, each with the split adder svpwm_core uses (Split 1) and with the
+one-chain adder (Split 0). fixed.angle_step works on the model's PHASE_WIDTH (34)
 bits; a W-bit accumulator is the same arithmetic with the angle and the step scaled by 2^(34-W), which
 is exact (every value is a multiple of 2^(34-W)), so the small build is compared to angle_step too.
 
@@ -224,10 +224,10 @@ async def full_revolution(dut):
     assert bwd == [(tb.state[0] - 1 - i) % 6 for i in range(-6, 0)], bwd
 
 
-# CarrySelect 0: the one-chain adder (svpwm_core uses the carry-select one), checked against the same model
+# Split 0: the one-chain adder (svpwm_core uses the split one but in its tiny build), checked against the same model
 BUILDS = {"w34_f24": {"PhaseWidth": 34, "FreqWidth": 24}, "w10_f8": {"PhaseWidth": 10, "FreqWidth": 8},
-          "w34_f24_chain": {"PhaseWidth": 34, "FreqWidth": 24, "CarrySelect": 0},
-          "w10_f8_chain": {"PhaseWidth": 10, "FreqWidth": 8, "CarrySelect": 0}}
+          "w34_f24_chain": {"PhaseWidth": 34, "FreqWidth": 24, "Split": 0},
+          "w10_f8_chain": {"PhaseWidth": 10, "FreqWidth": 8, "Split": 0}}
 
 
 @pytest.mark.parametrize("build", list(BUILDS))

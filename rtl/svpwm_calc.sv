@@ -413,16 +413,18 @@ module svpwm_calc #(
     // start; the program reads these late), then per class the phase's value (dtc_in)
     // (|hd| <= 2^(DtWidth-1), |carry| <= 2^DtWidth: DtWidth + 2 bits signed)
     logic [15:0]   in_sel;
-    logic [EW-1:0] hdf_w, mhdr_w;
+    logic [EW-1:0] hdf_w, mhdr_q;
     logic [EW-1:0] dpe_d [3];
     logic [EW-1:0] dpe_q [3];
     logic [EW-1:0] dtc_d [3];
     logic [EW-1:0] dtc_in [3];
     logic          in_signed;
+    // -hdr registered (every clock; hdr_i holds from the start, the program reads the inputs below late:
+    // the negation's carry chain before the sum's was a worst path)
     assign hdf_w  = EW'(hdf_i);
-    assign mhdr_w = EW'(0) - EW'(hdr_i);
+    always_ff @(posedge clk_i) mhdr_q <= EW'(0) - EW'(hdr_i);
     for (genvar ph = 0; ph < 3; ph++) begin : gen_dpe
-      assign dpe_d[ph] = (HasDtc ? (isign_i[ph] ? hdf_w : mhdr_w) : EW'(0))
+      assign dpe_d[ph] = (HasDtc ? (isign_i[ph] ? hdf_w : mhdr_q) : EW'(0))
                        + ((HasCarry && carry_en_i) ? carry_i[ph*EW +: EW] : EW'(0));
       always_ff @(posedge clk_i) dpe_q[ph] <= dpe_d[ph];
     end
@@ -547,11 +549,14 @@ module svpwm_calc #(
     // choice: carry_o is valid two clocks after done_o). The command lies in [-3 2^(DtWidth-1),
     // P + 3 2^(DtWidth-1)]: CntWidth + 2 bits signed (DtWidth + 2 <= CntWidth)
     localparam int CW = CntWidth + 2;
-    logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q;
+    logic [CW-1:0] cmd_d, cmd_q, cd_d, cd_q, wdata_q;
+    logic          snap_we_d, snap_we_q;  // the RSnap write of the clock before (cmd_q follows a clock
+                                          // later: the word's decode -> 18 enables was a worst path)
     logic [EW-1:0] ecar, hthr_d, hthr_q, hthr2_q, mhthr_d, mhthr_q, cd2_q;
     logic          c_hi_d, c_hi_q, c_lo_d, c_lo_q;
     logic [2:0]    ldp_d, ldp_q, ldp2_q;      // the phases of the out step one / two clocks before
-    assign cmd_d   = (we && pred_ok && dst == 5'(svpwm_pkg::RSnap)) ? acc_q[CW-1:0] : cmd_q;
+    assign snap_we_d = we && pred_ok && dst == 5'(svpwm_pkg::RSnap);
+    assign cmd_d     = snap_we_q ? wdata_q : cmd_q;
     assign cd_d    = cmd_q - acc_q[CW-1:0];
     assign hthr_d  = EW'(({1'b0, thr_i} + 1'b1) >> 1);
     assign mhthr_d = EW'(0) - hthr_q;
@@ -625,6 +630,8 @@ module svpwm_calc #(
         cmp_q   <= '0;
         car_q   <= '0;
         cmd_q   <= '0;
+        wdata_q <= '0;
+        snap_we_q <= 1'b0;
         cd_q    <= '0;
         ldp_q   <= '0;
         done_q  <= 1'b0;
@@ -669,6 +676,8 @@ module svpwm_calc #(
         cmp_q   <= cmp_d;
         car_q   <= car_d;
         cmd_q   <= cmd_d;
+        wdata_q <= acc_q[CW-1:0];
+        snap_we_q <= snap_we_d;
         cd_q    <= cd_d;
         ldp_q   <= ldp_d;
         done_q  <= done && !abort_i;

@@ -24,7 +24,9 @@ module svpwm_carrier #(
   output logic                valley_o,    // running and count == 0: first cycle of a carrier period
   output logic                peak_o,      // running and count == period: the middle of the period
   output logic                pre_peak_o,  // the next clock is a peak (registered-peak detect input)
-  output logic                load_o       // shadow load strobe: the next cycle is a valley (or idle)
+  output logic                load_o,      // shadow load strobe: the next cycle is a valley (or idle)
+  output logic                point_o      // running, the next cycle is a valley or a peak: load_o or
+                                           // pre_peak_o while run_i, from flip-flops only (ld_q, topu_q)
 );
 
   if (CntWidth < 8 || CntWidth > 16) begin : gen_bad_width
@@ -112,6 +114,7 @@ module svpwm_carrier #(
   assign valley_o = run_i && vz_q;       // == run_i && up_q && count_q == 0
   assign peak_o     = run_i && peak_q;    // == run_i && !up_q && count_q == period_q
   assign pre_peak_o = peak_d;
+  assign point_o    = ld_q || topu_q;
 
 `ifdef FORMAL
   logic f_past_valid = 1'b0;
@@ -130,6 +133,7 @@ module svpwm_carrier #(
   always_comb if (rst_ni) assert (topu_q == (up_q && count_q == period_q - 1'b1));
   always_comb if (rst_ni) assert (vz_q == (up_q && count_q == '0));
   always_comb if (rst_ni) assert (ld_q == (!up_q && count_q == CntWidth'(1)));
+  always_comb if (rst_ni && run_i) assert (point_o == (load_o || pre_peak_o));
   always_comb cover (rst_ni && peak_o && period_q == CntWidth'(3));
 `endif
 

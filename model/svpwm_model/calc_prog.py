@@ -40,7 +40,8 @@ def acc_width(cnt_width: int) -> int:
 
 
 RAM_WORDS = 32
-SIN60 = fixed.sine_table()[fixed.ROM_SIZE]
+SINE = tuple(fixed.sine_table())           # the sine ROM, built once (run() reads it every clock)
+SIN60 = SINE[fixed.ROM_SIZE]
 
 # ---- microcode fields --------------------------------------------------------------------------------------
 # The builder and the machine work with logical fields (own fields act in their step, next fields choose the
@@ -505,10 +506,20 @@ def sel_class(code: int) -> int:
     return (OUT_HI, OUT_LO, OUT_MID, OUT_MID)[code]
 
 
+# per sector (fixed.SECTOR_SEL row): the phase of the OUT class IN_DHI / IN_DLO / IN_DMID reads (the first
+# phase of that class), computed once
+_DPH = tuple(tuple(next(p for p in range(3) if sel_class(sel[p]) == cls) for cls in (OUT_HI, OUT_LO, OUT_MID))
+             for sel in fixed.SECTOR_SEL)
+_MIDNEG = tuple(any(c == 3 for c in sel) for sel in fixed.SECTOR_SEL)   # the middle class negated (code 3)
+
+
 class Machine:
     def __init__(self, prog: Program, cnt_width: int = fixed.CNT_WIDTH):
         self.prog = prog
         self.words = [decode(w) for w in prog.encode()]
+        # each word's A, next and condition fields, split once (run() registers them every clock)
+        self.split = [({n: w[n] for n, _ in A_FIELDS}, {n: w[n] for n, _ in NEXT_FIELDS},
+                       {n: w[n] for n, _ in COND_FIELDS}) for w in self.words]
         self.cw = cnt_width
         self.W = acc_width(cnt_width)
         self.mask = (1 << self.W) - 1
@@ -574,20 +585,19 @@ class Machine:
         cmp = [0, 0, 0] if junk is None else [junk.getrandbits(self.cw) for _ in range(3)]
         e_out = [0, 0, 0] if junk is None else [junk.randint(-1000, 1000) for _ in range(3)]
         cmd = 0 if junk is None else junk.randint(-(1 << 20), 1 << 20)
-        table = fixed.sine_table()
+        table = SINE
         out = None
         for k, w in enumerate(self.words):
             busy = k > 0
             # conditions (registered flags, the held mode / dpwm inputs, the Table 4-3 codes registered from
             # the sector of the clock before)
             sel = fixed.SECTOR_SEL[sec_p if sec_p < 6 else 5]
-            midneg = any(c == 3 for c in sel)
+            midneg = _MIDNEG[sec_p if sec_p < 6 else 5]
             c = flags[:N_FLAGS] + [0] * (32 - N_FLAGS)
             c[C_VF], c[C_XY], c[C_ERR], c[C_DQ] = int(is_vf), int(is_ab or is_dq), int(is_err), int(is_dq)
             c[C_MIDSGN] = int(midneg) ^ flags[F_FIRST]
             c[C_NV1N], c[C_NHALF] = 1 - flags[F_V1N], 1 - flags[F_HALF]
-            for isel_d, cls in ((IN_DHI, OUT_HI), (IN_DLO, OUT_LO), (IN_DMID, OUT_MID)):
-                ph = [p_ for p_ in range(3) if sel_class(sel[p_]) == cls][0]
+            for isel_d, ph in zip((IN_DHI, IN_DLO, IN_DMID), _DPH[sec_p if sec_p < 6 else 5]):
                 ins[isel_d] = ((hdf if (isign >> ph) & 1 else -hdr) + carry[ph]) & 0xFFFF
             if k == 0:
                 # idle word: only its next fields matter
@@ -689,9 +699,7 @@ class Machine:
             if trace is not None:
                 trace.append((k, _sx(acc, W), _sx(n_acc, W), a_val, _sx(b_val, W), cin_q))
             acc, ram_q, aux_q, binv_q, cin_q = n_acc, n_ram_q, n_aux, n_binv, n_cin
-            a_q = {n: w[n] for n, _ in A_FIELDS}
-            nx = {n: w[n] for n, _ in NEXT_FIELDS}
-            cx = {n: w[n] for n, _ in COND_FIELDS}
+            a_q, nx, cx = self.split[k]
             rbits_q, cbit_q, in_q, sw_q, sign_q = n_rbits, n_cbit, n_in, sw, sign
         assert out is not None, "the program never signalled done"
         return out

@@ -115,6 +115,8 @@ Vectors (`directed_*` the same on both simulators; (P, thr) corners: small P (8,
   carry_en 0: command - snapped); compact: junk on the ignored inputs; P in [8, 2^CntWidth - 1] (often
   <= 4 thr_max) with thr up to min(P/2, thr_max), thr_max / 0 often (snapping likely). 50,000 vectors on
   Verilator, 1,000 on Icarus (the cross-simulator check of the same stream's start); CALC_NRAND overrides.
+* Icarus runs every scenario of the 16-bit builds and the directed and handshake scenarios of the 12-bit ones
+  (ICARUS_CNT12_ONLY: every vector category at CntWidth 12); their modes, sweep and random run on Verilator.
 * Icarus's cost: ~22 us per clock of the busy calculator (Compact = 0), the simulator's evaluation of the RTL
   itself (the same without cocotb, with the harness or the bare svpwm_calc; idle: ~4 us): vvp's behavioural
   processes of svpwm_calc (~27 per clock), not the ROMs, the harness's checker or Python. Verilator:
@@ -144,7 +146,7 @@ import cocotb
 import pytest
 from cocotb.triggers import FallingEdge, Timer
 
-from simrun import REPO, rtl_sources, run_sim
+from simrun import REPO, rtl_sources, run_sim, sims_to_run
 from svpwm_model import config, fixed
 from svpwm_model.calc_prog import calc_latency, expect_carry as calc_expect
 
@@ -912,12 +914,18 @@ SCENARIOS = {
 # builds interleaved: pytest-xdist hands the first items out round robin, so the two workers start on
 # different builds (the Verilator items of one build share its build directory, see below)
 # (the serial build runs only its own short group: the same program, a slower multiplier)
-ITEMS = [(b, s) for s in SCENARIOS for b in BUILDS if not (BUILDS[b]["Features"] == config.TINY and s == "modes")
-         and (b == "full_serial") == (s == "serial")]
+# Icarus runs the 12-bit builds' directed and handshake scenarios (every category of vector at CntWidth 12);
+# their modes, sweep and random scenarios run on Verilator (the 16-bit builds run all of them on both)
+ICARUS_CNT12_ONLY = ("directed", "handshake")
+ITEMS = [(m, b, s) for m in sims_to_run() for s in SCENARIOS for b in BUILDS
+         if not (BUILDS[b]["Features"] == config.TINY and s == "modes")
+         and (b == "full_serial") == (s == "serial")
+         and not (m == "icarus" and BUILDS[b]["CntWidth"] == 12 and s not in ICARUS_CNT12_ONLY)]
 
 
-@pytest.mark.parametrize("build,scenario", ITEMS, ids=[f"{b}-{s}" for b, s in ITEMS])
-def test_svpwm_calc(sim, build, scenario):
+@pytest.mark.parametrize("simulator,build,scenario", ITEMS, ids=[f"{m}-{b}-{s}" for m, b, s in ITEMS])
+def test_svpwm_calc(simulator, build, scenario):
+    sim = simulator
     here = Path(__file__).parent
     run_sim(sim, toplevel="tb_svpwm_calc", sources=[*rtl_sources(), here / "tb_svpwm_calc.sv"],
             test_module="test_svpwm_calc", test_dir=here,

@@ -5,7 +5,9 @@
 Runs the core (rtl/*.sv on tb/cocotb/svpwm_core/tb_svpwm_core.sv) in Verilator through cocotb
 (tb/cocotb/demo/demo_runs.py), one full output revolution (+2 carrier periods) per point, and prints per point:
 commanded vs measured line-voltage fundamental, worst duty error vs the ideal SVPWM, Minas Table I sequence
-check, bit-exactness against the golden model, edge and cycle counts and the simulation throughput.
+check, bit-exactness against the golden model, edge and cycle counts and the simulation throughput; and
+the seeds' tables beside the core's (seed_tables): Minas Table I beside the RTL's pole states and AVR495
+Table 4-3 beside its compare values, one period per sector.
 
 Operating points (Minas, Martins, Couto, Fig. 9 and 10: 5.1 Hz and 50 Hz at f_sw = 15.6 kHz). We use
 f_sw = 15.625 kHz = 48 MHz / (2 * 1536) (Verma's carrier), P = 1536, dead time 48 clocks = 1 us.
@@ -346,6 +348,71 @@ def print_table(r: dict) -> None:
             print(f"   FAILED: {f.splitlines()[0]}")
 
 
+def _state(w: int) -> str:
+    """Pole word {c, b, a} as Minas writes a state: "abc", 1 = upper switch on ("100" = phase a on)."""
+    return f"{w & 1}{(w >> 1) & 1}{(w >> 2) & 1}"
+
+
+def seed_tables(r: dict) -> list[str]:
+    """The seeds' tables beside the core's, from one Minas point's edges (``save_edges``): per sector the
+    modulated period nearest theta' = 30 deg (all dwell times non-zero). Minas Table I (the state sequence
+    of a carrier period) beside the RTL's pole states in that period; AVR495 Table 4-3 (C = P/2 (1 + k), k
+    from d_a, d_b) at the exact angle and m the core sampled, beside the RTL's compare values. The seeds'
+    rows come from svpwm_model.tables (the transcription, errata apart); every period is checked against
+    Table I and |C - C_ideal| <= 1 count by the run itself, this shows one period of each sector."""
+    import numpy as np
+
+    from svpwm_model import fixed
+    from svpwm_model.analysis import window
+    from svpwm_model.tables import AVR495_TABLE_4_3, MINAS_TABLE_I
+
+    z = np.load(r["edges_npz"])
+    if "theta" not in z.files:
+        return ["(no angles in the edges file: re-run the point)"]
+    edges = [(int(c), int(w)) for c, w in z["pole_edges"]]
+    val, cmp, sec, per, th, mu = (z[k] for k in ("valley", "cmp", "sector", "period", "theta", "m_used"))
+    one = 1 << fixed.PHASE_WIDTH
+    rows_i, rows_c, worst = [], [], 0.0
+    for k in range(6):
+        idx = [i for i in range(len(sec)) if sec[i] == k and th[i] >= 0 and i + 2 < len(val)]
+        if not idx:
+            continue
+        frac = np.array([(th[i] & (one - 1)) / one for i in idx])
+        i = idx[int(np.argmin(np.abs(frac - 0.5)))]
+        n = i + 1                                        # cmp[i] is the period from valley n (CoreTB's RtlRun)
+        core = window(edges, int(val[n]) + 1, int(val[n + 1]) + 1)
+        seed = ["".join(map(str, st)) for st in MINAS_TABLE_I[k]]
+        got = [_state(w) for w in core]
+        rows_i.append(f"   {k + 1}       {' '.join(seed)}   {' '.join(got):<27}   {n:>6}  "
+                      f"{'yes' if got == seed else 'NO'}")
+        tp = (th[i] & (one - 1)) / one * math.pi / 3           # theta' of the sampled angle (rad)
+        m = int(mu[i]) / fixed.M_ONE
+        da, db = m * math.sin(math.pi / 3 - tp), m * math.sin(tp)
+        P = int(per[i])
+        c_seed = [P / 2 * (1 + ca * da + cb * db) for ca, cb in AVR495_TABLE_4_3[k]]
+        form = ", ".join(f"{'-' if ca < 0 else '+'}da{'-' if cb < 0 else '+'}db" for ca, cb in AVR495_TABLE_4_3[k])
+        d = max(abs(int(c) - x) for c, x in zip(cmp[i], c_seed))
+        worst = max(worst, d)
+        rows_c.append(f"   {k + 1}       {form}   {math.degrees(tp):6.2f}  {da:.5f}  {db:.5f}   "
+                      + " ".join(f"{x:7.2f}" for x in c_seed) + "   "
+                      + " ".join(f"{int(c):5d}" for c in cmp[i]) + f"   {d:.2f}")
+    ti = r["table_i"]
+    return (["Minas Table I (state sequence within a carrier period, abc, 1 = upper switch on) beside the core's "
+             "pole states, one period per sector (theta' nearest 30 deg):",
+             "   sector  Minas Table I (seed)          the core (RTL)                period  equal",
+             "   ------  ---------------------------   ---------------------------   ------  -----"] + rows_i +
+            [f"   every period of the run: {ti['periods']} checked, {ti['failures']} not in Table I's row "
+             f"({ti['with_skipped_states']} skip a state whose dwell time rounds to 0)",
+             "AVR495 Table 4-3 (compare values C = P/2 (1 + k), k per phase a, b, c) at the angle and m the core "
+             "sampled, beside the core's, same periods:",
+             "   sector  k_a, k_b, k_c (seed)     theta'   d_a      d_b         seed's C_a C_b C_c (float)   "
+             "core's C_a C_b C_c   |diff|",
+             "   ------  ----------------------   ------  -------  -------   -----------------------   "
+             "-----------------   ------"] + rows_c +
+            [f"   largest |diff| shown {worst:.2f} counts; over every period of the run: "
+             f"{r['worst_abs_c_minus_ideal_counts']:.3f} counts (<= 1 checked)"])
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  epilog="Normally run as `make demo` from the repo root (venv, PYTHONPATH, "
@@ -411,6 +478,10 @@ def main(argv=None) -> int:
                   "2 revolutions each, pole states (line a - b)")
             hdr = True
         print_table(r)
+        if r["point"]["name"] in {p["name"] for p in POINTS} and r.get("edges_npz") and not r.get("missing"):
+            print()
+            for line in seed_tables(r):
+                print("   " + line)
     summary = dict(command=" ".join([Path(sys.argv[0]).name] + (argv if argv is not None else sys.argv[1:])),
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), sim=args.sim, wall_s=wall, run_error=err,
                    results=results)

@@ -11,7 +11,7 @@
 #   make demo                 the main result in ~2 min: Minas' Fig. 9/10 points, RTL == model, the seeds' tables
 #                             beside the core's, spectra, dead-time compensation -> build/demo/ (scripts/demo.py --quick)
 #   make report               every demo run (also the m sweep, volt-second carry, overmodulation, speed loop),
-#                             every plot and table -> build/report/report.md (~7 min; docs/demo.md)
+#                             every plot and table -> build/report/report.md (5-9 min; docs/demo.md)
 #   make lint | model-test | rom | rom-check | bench | mutate-smoke | clean | distclean
 #   make deps                 the Debian packages (scripts/install-deps.sh; venv, test, demo, report run it first)
 

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """Demo (`make demo`, `make report`): the svpwm core in RTL at Minas' two published operating points.
 
-Two modes (docs/demo.md): ``--quick`` (`make demo`, a few minutes, output in build/demo/) runs Minas' two
+Two modes (docs/demo.md): ``--quick`` (`make demo`, about 2 min, output in build/demo/) runs Minas' two
 points, prints the seeds' tables (Minas Table I, AVR495 Table 4-3) beside the core's, their spectra, and the
 dead-time compensation runs at both points; without it (`make report`, output in build/report/) every run
 below: also the m sweep, the volt-second carry and overmodulation studies and the AVR495 speed loop. Both
@@ -442,7 +442,7 @@ def main(argv=None) -> int:
                          "(vsc_m<100 m>_{dt0,off,on}) or overmodulation (om<0|1>_m<word>) run (repeatable)")
     ap.add_argument("--quick", action="store_true",
                     help="the fast subset (make demo): Minas' two points with the seeds' tables and their spectra, "
-                         "and the six dead-time compensation runs; the --no-* options then have nothing to skip")
+                         "and the six dead-time compensation runs (--no-dtc skips those)")
     ap.add_argument("--out", type=Path, default=None,
                     help=f"output directory (default {rel(DEMO_DIR)} with --quick, else {rel(REPORT_DIR)})")
     ap.add_argument("--no-sweep", action="store_true", help="skip the m sweep at 50 Hz")

@@ -8,8 +8,12 @@
 #   make sim [SIM=icarus]     cocotb testbenches (SIM=verilator|icarus, default both), slowest tests listed
 #   make mutate [MUTANTS=220] mutation score of the hand-written RTL -> build/mutate/report.md (long)
 #   make soc-sim | soc BOARD=icebreaker   LiteX SoC (fpga/litex/litex.mk)
-#   make lint | model-test | rom | rom-check | demo | bench | mutate-smoke | clean | distclean
-#   make deps                 the Debian packages (scripts/install-deps.sh; venv, test, demo run it first)
+#   make demo                 the main result in ~2 min: Minas' Fig. 9/10 points, RTL == model, the seeds' tables
+#                             beside the core's, spectra, dead-time compensation -> build/demo/ (scripts/demo.py --quick)
+#   make report               every demo run (also the m sweep, volt-second carry, overmodulation, speed loop),
+#                             every plot and table -> build/report/report.md (5-9 min; docs/demo.md)
+#   make lint | model-test | rom | rom-check | bench | mutate-smoke | clean | distclean
+#   make deps                 the Debian packages (scripts/install-deps.sh; venv, test, demo, report run it first)
 
 SHELL := bash
 .SHELLFLAGS := -eu -o pipefail -c
@@ -53,7 +57,7 @@ RTL_PKGS    := $(sort $(wildcard rtl/*_pkg.sv))
 LINT_SRCS   ?= $(strip $(RTL_PKGS) rtl/svpwm_core.sv $(filter-out $(RTL_PKGS) rtl/svpwm_core.sv,$(sort $(wildcard rtl/*.sv))))
 LINT_FLAGS  ?= --lint-only -Wall
 
-.PHONY: venv deps test lint model-test sim demo bench rom rom-check clean distclean formal mutate mutate-smoke
+.PHONY: venv deps test lint model-test sim demo report bench rom rom-check clean distclean formal mutate mutate-smoke
 
 venv: deps $(STAMP)
 
@@ -149,7 +153,11 @@ mutate: $(STAMP) deps
 mutate-smoke: $(STAMP) deps
 	$(PY) scripts/mutate.py --smoke
 
+# demo: the fast subset (build/demo/); report: every run, plot and table (build/report/); docs/demo.md
 demo: deps $(STAMP)
+	$(PY) scripts/demo.py --quick
+
+report: deps $(STAMP)
 	$(PY) scripts/demo.py
 
 bench: $(STAMP)

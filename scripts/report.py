@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Analysis, plots and report of `make demo` (called by scripts/demo.py after the RTL runs).
+"""Analysis, plots and report of `make demo` / `make report` (called by scripts/demo.py after the RTL runs).
 
-Inputs: build/demo/<point>.json + <point>_edges.npz (RTL pole/gate edges from tb/cocotb/demo/demo_runs.py),
-speed_loop_vf.npz (the closed loop with the RTL in it) and dtc_<point>_<run>.npz (the dead-time compensation
-runs: RTL with the motor model in the loop).  Outputs under build/demo/: fig_*.png,
-metrics.json, report.md.  Can be re-run alone: `.venv/bin/python scripts/report.py` (PYTHONPATH=model).
+Inputs, in the run's output directory (build/demo/ for `make demo`, build/report/ for `make report`):
+<point>.json + <point>_edges.npz (RTL pole/gate edges from tb/cocotb/demo/demo_runs.py), speed_loop_vf.npz
+(the closed loop with the RTL in it) and dtc_<point>_<run>.npz (the dead-time compensation runs: RTL with the
+motor model in the loop); a figure whose runs are not there is left out.  Outputs in the same directory:
+fig_*.png, metrics.json, report.md.  Can be re-run alone: `.venv/bin/python scripts/report.py [DIR]`
+(PYTHONPATH=model; DIR default build/report).
 """
 from __future__ import annotations
 
@@ -813,11 +815,13 @@ def sweep_row(r, va) -> dict:
 
 
 def build(out: Path, minas: list[str], sweep: list[str], speed: str | None, dtc: list[str] = (),
-          vsc: dict | None = None, om: dict | None = None) -> dict:
+          vsc: dict | None = None, om: dict | None = None, made_by: str = "make report") -> dict:
     """``vsc`` / ``om``: the summaries of the volt-second carry and overmodulation runs (vsc_summary,
-    om_summary, made by scripts/demo.py from the runs' JSON; in demo.json)."""
+    om_summary, made by scripts/demo.py from the runs' JSON; in demo.json). ``made_by``: the make target, named
+    in report.md ("make demo": the quick subset, the rest is pointed to `make report`)."""
     t_start = time.perf_counter()
-    metrics: dict = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), udc_v=M.UDC, motor=M.MotorParams().__dict__,
+    metrics: dict = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), made_by=made_by, udc_v=M.UDC,
+                         motor=M.MotorParams().__dict__,
                          definitions=S.__doc__.split("Figures of merit")[1].split("The ideal references")[0].strip(),
                          points={}, sweep_50hz=[], speed_loop=None)
     figs: list[tuple[str, str, str]] = []
@@ -843,7 +847,7 @@ def build(out: Path, minas: list[str], sweep: list[str], speed: str | None, dtc:
         va = analyse_voltage(r, z)
         metrics["sweep_50hz"].append(sweep_row(r, va))
     fig10 = [n for n in minas if "50hz" in n]
-    if fig10:
+    if fig10 and sweep:                          # Fig. 10 is the sweep's m = 0.9 (no sweep in `make demo`)
         metrics["sweep_50hz"].append(metrics["points"][fig10[0]]["sweep"])
     metrics["sweep_50hz"].sort(key=lambda x: x["m"])
 
@@ -994,8 +998,12 @@ def fidelity_table(metrics) -> list[str]:
 
 
 def write_md(out: Path, metrics: dict, figs):
-    lines = ["# svpwm demo report", "",
-             f"Generated {metrics['date']} by `make demo` (scripts/demo.py → scripts/report.py). All voltages come from "
+    made_by = metrics.get("made_by", "make report")
+    quick = (["`make demo` runs Minas' two points and the dead-time compensation runs only: the m sweep, the "
+              "volt-second carry and overmodulation studies and the AVR495 speed loop are in `make report` "
+              "(build/report/report.md).", ""] if made_by == "make demo" else [])
+    lines = ["# svpwm demo report", ""] + quick + [
+             f"Generated {metrics['date']} by `{made_by}` (scripts/demo.py → scripts/report.py). All voltages come from "
              "the RTL (rtl/*.sv on Verilator through cocotb); spectra are exact integrals over the RTL's edge times. "
              f"Udc = {metrics['udc_v']:.0f} V (m = 0.9 at 50 Hz = 230 V line rms). m: m = 1 is the inscribed circle, "
              "line fundamental peak = m·Udc. Dead time off = the core's pole states (ideal inverter; the m sweep runs with "
@@ -1011,7 +1019,7 @@ def write_md(out: Path, metrics: dict, figs):
     sm = metrics.get("dead_time_compensation")
     if sm:
         lines += ["## Dead-time compensation (1 µs, motor model in the loop)", "",
-                  "Target: " + sm["target"] + " (stated, not a check: `make demo` passes on RTL == model and "
+                  "Target: " + sm["target"] + " (stated, not a check: the demo passes on RTL == model and "
                   "the safety checks).", ""]
         lines += dtc_table(sm)
         lines += [""] + [f"- {x}" for x in dtc_verdict(sm)] + [""]
@@ -1038,7 +1046,7 @@ def write_md(out: Path, metrics: dict, figs):
 
 
 if __name__ == "__main__":
-    out = REPO / "build" / "demo"
+    out = Path(sys.argv[1]).resolve() if len(sys.argv) > 1 else REPO / "build" / "report"
     d = json.loads((out / "demo.json").read_text())
     names = [r["point"]["name"] for r in d["results"] if not r.get("missing")]
     kinds = {r["point"]["name"]: r["point"].get("kind", "point") for r in d["results"]}
@@ -1046,5 +1054,6 @@ if __name__ == "__main__":
     sweep = [n for n in names if n.startswith("sweep_")]
     speed = next((n for n in names if kinds[n] == "speed_loop"), None)
     dtc = [n for n in names if kinds[n] == "dtc"]
-    build(out, minas, sweep, speed, dtc, vsc=d.get("volt_second_carry"), om=d.get("overmodulation"))
+    build(out, minas, sweep, speed, dtc, vsc=d.get("volt_second_carry"), om=d.get("overmodulation"),
+          made_by="make demo" if str(d.get("mode", "")).startswith("quick") else "make report")
     print(f"report: {out / 'report.md'}")

@@ -36,6 +36,11 @@ VCD: 1 ns time units; an edge at core clock cycle c (cycle 0 = first clock with 
 round(c * 1e9 / 48e6) ns, i.e. the waveform is shown at the core's 48 MHz clock (20.833 ns per cycle),
 not at the harness' 10 ns simulation clock. Edges only (no clock), 1-bit wires gate_hi_a/b/c,
 gate_lo_a/b/c, pole_a/b/c.
+
+``save_edges``: ``<name>_edges.npz`` with the RTL's pole and gate edges, valleys, and per modulated period
+(index i = period i + 1, as CoreTB's RtlRun) its compare values, sector and P, and the model's exact
+full-accumulator angle (``theta``) and magnitude word (``m_used``) they were computed from (-1: none); the
+RTL's values equal the model's (asserted), so scripts/demo.py can set them beside the seeds' tables.
 """
 from __future__ import annotations
 
@@ -239,7 +244,9 @@ async def run_point(dut, pt: dict) -> None:
                             valley=np.asarray(rtl.valley, dtype=np.int64),
                             cmp=np.asarray(rtl.cmp, dtype=np.int64), sector=np.asarray(rtl.sector, dtype=np.int64),
                             period=np.asarray(rtl.period, dtype=np.int64), freq_word=fw, m_word=mw, dt=u.dt,
-                            mp=u.mp, vsc=u.vsc, om=u.om, end=exp.end)
+                            mp=u.mp, vsc=u.vsc, om=u.om, end=exp.end,
+                            theta=np.asarray([-1 if x is None else x for x in exp.theta[1:]], dtype=np.int64),
+                            m_used=np.asarray([-1 if x is None else x for x in exp.m[1:]], dtype=np.int64))
         res["edges_npz"] = str(npz)
     res["test_wall_s"] = time.perf_counter() - t_test
     res["ok"] = not fails

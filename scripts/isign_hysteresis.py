@@ -17,16 +17,20 @@ as `make demo`) period by period, in a closed loop:
   positive above +band, else the last sign is kept;
 * the core takes the three bits with the reference of the next valley update (isign_i, 1 = negative).
 
-Rows: dead time 0 and 1 us uncompensated (references), then 1 us with the compensation and each band. The
-band is in % of the motor model's rated current (3.1 A rms, motor.MotorParams: 230 V, 50 Hz, slip 0.064).
-Columns: phase-current THD to the 200th order (spectrum.current_thd over the window `make demo` analyses),
-the fundamental, how often the applied signs changed, and the phase-periods whose applied sign differs from
-the sign of the current at the middle of the period (the peak, where the pulse is centred).
+Printed: the phase-current THD to the 200th order (spectrum.current_thd over the window `make demo`
+analyses), a row per run (dead time 0 and 1 us uncompensated as references, then 1 us compensated with each
+band), a column per point and condition (where the currents are measured, noise). Band and noise are in %
+of the motor model's rated current (3.07 A rms: motor.MotorParams at 230 V, 50 Hz, slip 0.064). --detail
+adds a line per run: the fundamental, how often the applied 3-bit word changed over the run, and the
+phase-periods whose applied sign differs from the current's at the middle of the period (the peak, where
+the pulse is centred). With the currents taken in S - 1 and no band the motor gets the same gate edges and
+segment boundaries (the harness' monitor word holds the poles too) as in make demo's RTL runs, so the
+figures equal docs/demo.md's.
 
 ``--check`` replays the inputs the loop applied through CoreModel.run (the golden model of the core) and
 asserts its gate edges equal the loop's on every clock, so the incremental loop is the core's timeline.
 
-    python scripts/isign_hysteresis.py                  # both points, bands 0 1 2 5 10 %, noise 0 1 3 % (~40 s)
+    python scripts/isign_hysteresis.py                  # both points, bands 0 1 2 5 10 %, noise 0 1 3 % (~35 s)
     python scripts/isign_hysteresis.py --noise 2 --sample valley --detail   # 2 % rms noise, one line per run
     python scripts/isign_hysteresis.py --points fig10 --bands 0,5 --check
 """

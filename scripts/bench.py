@@ -151,7 +151,7 @@ def spectral_fidelity() -> list[dict]:
         fr = va["figures"]
         lr, li, lq = fr["rtl"]["line"], fr["ideal"]["line"], fr["ideal_rounded"]["line"]
         # the alternative the core does not use: first-order error-feedback rounding of the ideal compare
-        # values (README "Fidelity": meets the WTHD target, breaks the low-order bound at some points)
+        # values (docs/demo.md, error feedback: meets the WTHD target, breaks the low-order bound at some points)
         ef = S.ideal_spectra(va["f1_hz"] / F_CLK, m, P_VERMA, va["t0"], va["n_fund"], va["jmax"], F_CLK,
                              rounding="error_feedback")
         le = S.figures(ef.line[0], va["n_fund"], va["T"], F_CLK, va["f_sw"])

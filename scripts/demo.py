@@ -377,7 +377,7 @@ def seed_tables(r: dict) -> list[str]:
     Table I and |C - C_ideal| <= 1 count by the run itself, this shows one period of each sector."""
     import numpy as np
 
-    from svpwm_model import fixed
+    from svpwm_model import fixed, ideal
     from svpwm_model.analysis import window
     from svpwm_model.tables import AVR495_TABLE_4_3, MINAS_TABLE_I
 
@@ -402,9 +402,9 @@ def seed_tables(r: dict) -> list[str]:
                       f"{'yes' if got == seed else 'NO'}")
         tp = (th[i] & (one - 1)) / one * math.pi / 3           # theta' of the sampled angle (rad)
         m = int(mu[i]) / fixed.M_ONE
-        da, db = m * math.sin(math.pi / 3 - tp), m * math.sin(tp)
         P = int(per[i])
-        c_seed = [P / 2 * (1 + ca * da + cb * db) for ca, cb in AVR495_TABLE_4_3[k]]
+        _, da, db = (float(x) for x in ideal.ideal_duties(k * math.pi / 3 + tp, m))   # Table 4-3's d_a, d_b
+        c_seed = [float(x) for x in ideal.ideal_compare(k * math.pi / 3 + tp, m, P)]   # its C = P/2 (1 + k)
         form = ", ".join(f"{'-' if ca < 0 else '+'}da{'-' if cb < 0 else '+'}db" for ca, cb in AVR495_TABLE_4_3[k])
         d = max(abs(int(c) - x) for c, x in zip(cmp[i], c_seed))
         worst = max(worst, d)

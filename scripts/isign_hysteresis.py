@@ -86,23 +86,6 @@ class SignDetector:
         return self.bits
 
 
-def start_state(f_hz: float, m: float, fw: int, period: int, dt: int, dtc: bool, lead: int) -> dict:
-    """Speed and fluxes at the first valley t_1 (tb/cocotb/demo/demo_runs.dtc_start, without cocotb): the
-    equivalent-circuit steady state for T_LOAD at the commanded voltage, less the dead time's first-order
-    loss when uncompensated."""
-    mp = M.MotorParams()
-    f1 = fw / (6 * (1 << fixed.PHASE_WIDTH))
-    f_hz = f1 * F_CLK                                       # the frequency the word gives
-    slip = M.slip_for_torque(mp, abs(f_hz), m * M.UDC / math.sqrt(6), T_LOAD)
-    t1 = fixed.START_DELAY + 2 * period
-    ang = 2 * math.pi * f1 * (t1 - fixed.START_DELAY - (period + lead + 1))
-    v_cmd = m * M.UDC / math.sqrt(3) * complex(math.cos(ang), math.sin(ang))
-    loss = 0.0 if dtc else M.dead_time_loss(dt, period)
-    ps, pr, _ = M.steady_state_with_loss(mp, abs(f_hz), v_cmd, slip, loss)
-    wm = (1 - slip) * 2 * math.pi * abs(f_hz) / mp.p
-    return dict(mp=mp, t_start=t1, ps=complex(ps), pr=complex(pr), wm=wm)
-
-
 def _period_targets(t: int, period: int, c: int | None) -> list[tuple[int, int]]:
     """(cycle, target) of one leg over the cycles [t + 1, t + 2P + 1) of the carrier period from valley t
     with compare value c (None: no values yet, gates off): the pole is high in [t + c + 1, t + 2P - c + 1)
@@ -133,7 +116,7 @@ def run(f_hz: float, m: float, *, dt: int, dtc: bool, band_pct: float = 0.0, noi
     k0 = 1 + int(math.ceil(warmup_revs / abs(f1) / (2 * P)))
     t0 = fixed.START_DELAY + 2 * P * k0 + 1                 # the analysed window [t0, t0 + T)
     n_per = n_periods or int(math.ceil((t0 + T - fixed.START_DELAY) / (2 * P))) + 2
-    st = start_state(f_hz, m, fw, P, dt, dtc, lead)
+    st = M.dtc_start(fw, m, P, dt, dtc, T_LOAD, lead, F_CLK)   # make demo's start state
     mot = M.InverterMotor(st["mp"], gates=True, fixed_speed=True, h_max=10e-6, trace=True)
     mot.set_state(st["ps"], st["pr"], st["wm"])
     mot.t = st["t_start"]

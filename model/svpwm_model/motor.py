@@ -155,6 +155,32 @@ def steady_state_with_loss(mp: MotorParams, f_hz: float, v_cmd: complex, slip: f
     return ps, pr, v
 
 
+
+def dtc_start(f_word: int, m: float, period: int, dt: int, dtc: bool, t_load: float, lead: int,
+              f_clk: float = F_CLK) -> dict:
+    """Operating point and start state of a dead-time run at frequency word ``f_word`` (make demo's
+    compensation runs, tb/cocotb/demo/demo_runs.py, and scripts/isign_hysteresis.py): the speed of the
+    equivalent-circuit steady state for ``t_load`` at the commanded voltage (the same slip in all three runs
+    of a point), and the fluxes of the sinusoidal steady state at the first valley t_1, with the dead time's
+    fundamental loss (dead_time_loss) when the compensation is off. The voltage vector at cycle c is at the
+    accumulator angle of c - (P + lead + 1): a period's pulses are centred on its peak, P clocks after the
+    valley its values were sampled ``lead`` clocks before."""
+    mp = MotorParams()
+    f1 = f_word / (6 * (1 << fixed.PHASE_WIDTH))              # cycles^-1, signed
+    f_hz = f1 * f_clk
+    slip = slip_for_torque(mp, abs(f_hz), m * UDC / math.sqrt(6), t_load)
+    t1 = fixed.START_DELAY + 2 * period
+    ang = 2 * math.pi * f1 * (t1 - fixed.START_DELAY - (period + lead + 1))
+    v_cmd = m * UDC / math.sqrt(3) * complex(math.cos(ang), math.sin(ang))
+    loss = 0.0 if dtc else dead_time_loss(dt, period)
+    # the steady state for the positive sequence; a negative frequency is its mirror image
+    ps, pr, v_eff = steady_state_with_loss(mp, abs(f_hz), v_cmd if f1 > 0 else v_cmd.conjugate(), slip, loss)
+    if f1 < 0:
+        ps, pr = ps.conjugate(), pr.conjugate()
+    wm = math.copysign((1 - slip) * 2 * math.pi * abs(f_hz) / mp.p, f1)
+    return dict(mp=mp, slip=slip, t_start=t1, ps=complex(ps), pr=complex(pr), wm=wm,
+                speed_rpm=wm * 60 / (2 * math.pi), v_loss_v=loss, v_eff_over_cmd=abs(v_eff) / abs(v_cmd))
+
 @dataclass
 class Trace:
     """Samples at every segment end (and sub-step): time (cycles), stator current vector, speed (rad/s)."""

@@ -365,31 +365,10 @@ async def run_speed_loop(dut, pt: dict) -> None:
 
 
 def dtc_start(pt: dict, fw: int, lead: int) -> dict:
-    """Operating point and start state of a dead-time run (run_dtc_point): the speed of the
-    equivalent-circuit steady state for ``t_load`` at the commanded voltage (the same slip in all three runs
-    of a point, as scripts/report.py's motor_point), and the fluxes of the sinusoidal steady state at the
-    first valley t_1, with the dead time's fundamental loss (motor.dead_time_loss) when the compensation
-    is off.  The voltage vector at cycle c is at the accumulator angle of c - (P + lead + 1): a period's
-    pulses are centred on its peak, P clocks after the valley its values were sampled ``lead`` clocks
-    before."""
+    """Operating point and start state of a dead-time run (run_dtc_point): motor.dtc_start for the point."""
     from svpwm_model import motor as M
-    mp = M.MotorParams()
-    P, dt = int(pt["period"]), int(pt["dt"])
-    f1 = fw / (6 * (1 << fixed.PHASE_WIDTH))                  # cycles^-1, signed
-    f_hz = f1 * F_CLK
-    m = pt["m"]
-    slip = M.slip_for_torque(mp, abs(f_hz), m * M.UDC / math.sqrt(6), pt["t_load"])
-    t1 = fixed.START_DELAY + 2 * P
-    ang = 2 * math.pi * f1 * (t1 - fixed.START_DELAY - (P + lead + 1))
-    v_cmd = m * M.UDC / math.sqrt(3) * complex(math.cos(ang), math.sin(ang))
-    loss = 0.0 if pt.get("dtc") else M.dead_time_loss(dt, P)
-    # the steady state for the positive sequence; a negative frequency is its mirror image
-    ps, pr, v_eff = M.steady_state_with_loss(mp, abs(f_hz), v_cmd if f1 > 0 else v_cmd.conjugate(), slip, loss)
-    if f1 < 0:
-        ps, pr = ps.conjugate(), pr.conjugate()
-    wm = math.copysign((1 - slip) * 2 * math.pi * abs(f_hz) / mp.p, f1)
-    return dict(mp=mp, slip=slip, t_start=t1, ps=complex(ps), pr=complex(pr), wm=wm,
-                speed_rpm=wm * 60 / (2 * math.pi), v_loss_v=loss, v_eff_over_cmd=abs(v_eff) / abs(v_cmd))
+    return M.dtc_start(fw, pt["m"], int(pt["period"]), int(pt["dt"]), bool(pt.get("dtc")), pt["t_load"], lead,
+                       F_CLK)
 
 
 def isign_of(currents) -> int:

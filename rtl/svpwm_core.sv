@@ -14,7 +14,9 @@
 //                without POLAR and DQ theta_i, without AB and DQ v1_i / v2_i), DPWM (dpwm_i), SIXSTEP (om_i),
 //                DTC (dtc_en_i, isign_i), CARRY (vsc_en_i), DTF (dtf_i, dtf_en_i: one dead time, dt_i), UPD
 //                (upd_i: valley updates), PRESC (presc_i), SYNC (sync_en_i, sync_i), DSP (the calculator's
-//                multiplier: 1 registered 16 x 16, 0 the serial unit). TRANSITIONAL: CfgTiny (FREQ only,
+//                multiplier: 1 registered 16 x 16, 0 the serial unit), ADC (adc_pt_*_i, win_min_i: two
+//                ADC trigger points and the shunt-window report, svpwm_adc; without it adc_trig_o at the
+//                valley / peak only and win_*_o 0). TRANSITIONAL: CfgTiny (FREQ only,
 //                the compact core before) runs its own serial datapath and ignores mode_i too.
 //                SampleLead = svpwm_pkg::sample_lead(Features) (full 250, foc 218, vf 166, minimal 135,
 //                tiny 226 clocks)
@@ -99,6 +101,10 @@ module svpwm_core #(
                                                        // the leg), sampled with the reference
   input  logic                        vsc_en_i,        // volt-second carry of the minimum-pulse rule on
   input  logic [1:0]                  adc_trig_i,      // adc_trig_o at {peak, valley}
+  input  logic [1:0]                  adc_pt_en_i,     // ADC trigger point k on (sampled with the reference)
+  input  logic [1:0]                  adc_pt_dn_i,     // trigger point k on the down count
+  input  logic [2*CntWidth-1:0]       adc_pt_cnt_i,    // {cnt_1, cnt_0} carrier counts of the points
+  input  logic [CntWidth:0]           win_min_i,       // minimum low-side shunt window, clocks
   input  logic                        sync_en_i,       // start the carrier only on a sync_i pulse
   input  logic                        sync_i,          // another core's sync_o (same clock domain)
   input  logic                        fault_i,         // trip input, asynchronous, active high
@@ -116,7 +122,12 @@ module svpwm_core #(
   output logic                        valley_o,        // pulse: first clock of a carrier period
   output logic                        peak_o,          // pulse: carrier peak
   output logic                        update_o,        // pulse: new compare values active from this clock
-  output logic                        adc_trig_o,      // pulse: ADC trigger (valley and/or peak)
+  output logic                        adc_trig_o,      // pulse: ADC trigger (valley, peak, points)
+  output logic [1:0]                  adc_pt_o,        // pulse: trigger point k
+  output logic [3*(CntWidth+1)-1:0]   win_lo_o,        // {c, b, a} low-side windows around the valley
+  output logic [3*(CntWidth+1)-1:0]   win_hi_o,        // {c, b, a} high-side windows around the peak
+  output logic [2:0]                  win_ok_o,        // {c, b, a} low-side window >= win_min_i
+  output logic [1:0]                  win_recon_o,     // phase with the shortest low-side window
   output logic                        sync_o,          // pulse: the clock before a valley (sync_i)
   output logic [2:0]                  sector_o,        // sector (0..5 = seeds' 1..6) of the active values
   output logic [3*CntWidth-1:0]       cmp_o,           // {C_c, C_b, C_a} active now
@@ -153,6 +164,7 @@ module svpwm_core #(
   localparam bit HasUpd   = svpwm_pkg::has(Features, svpwm_pkg::FeatUpd);
   localparam bit HasPresc = svpwm_pkg::has(Features, svpwm_pkg::FeatPresc);
   localparam bit HasSync  = svpwm_pkg::has(Features, svpwm_pkg::FeatSync);
+  localparam bit HasAdc   = svpwm_pkg::has(Features, svpwm_pkg::FeatAdc);
   if ((Features & ~svpwm_pkg::CfgAll) != 0 || (Features & svpwm_pkg::ModeFeatures) == 0)
   begin : gen_bad_features
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
@@ -846,6 +858,45 @@ module svpwm_core #(
     .tripped_o     (tripped_o)
   );
 
+  // ---- current sampling (feature ADC): trigger points and the shunt-window report ------------------
+  logic [1:0] adc_pt;
+
+  if (HasAdc) begin : gen_adc
+    svpwm_adc #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_adc (
+      .clk_i       (clk_i),
+      .rst_ni      (rst_ni),
+      .run_i       (run_q),
+      .count_i     (count),
+      .up_i        (up),
+      .valley_i    (valley),
+      .peak_i      (peak),
+      .period_i    (period_act),
+      .sample_i    (event_now),
+      .take_i      (take),
+      .pt_en_i     (adc_pt_en_i),
+      .pt_dn_i     (adc_pt_dn_i),
+      .pt_cnt_i    (adc_pt_cnt_i),
+      .win_min_i   (win_min_i),
+      .active_i    (en_i && run_q && valid_q && !trip_sync),
+      .cmp_i       (cmp_q),
+      .dt_i        (dt_q),
+      .dtf_i       (dtf_act),
+      .pt_o        (adc_pt),
+      .win_lo_o    (win_lo_o),
+      .win_hi_o    (win_hi_o),
+      .win_ok_o    (win_ok_o),
+      .win_recon_o (win_recon_o)
+    );
+  end else begin : gen_no_adc       // valley / peak triggers only; the points and window inputs not read
+    logic unused_adc;
+    assign unused_adc  = ^{adc_pt_en_i, adc_pt_dn_i, adc_pt_cnt_i, win_min_i};
+    assign adc_pt      = '0;
+    assign win_lo_o    = '0;
+    assign win_hi_o    = '0;
+    assign win_ok_o    = '0;
+    assign win_recon_o = '0;
+  end
+
   // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16;
   // pre_peak: take reads upd_point (the formal properties read pre_peak)
   logic unused_acc;
@@ -857,7 +908,8 @@ module svpwm_core #(
   assign valley_o       = valley;
   assign peak_o         = peak;
   assign update_o       = update_q;
-  assign adc_trig_o     = (valley && adc_trig_i[0]) || (peak && adc_trig_i[1]);
+  assign adc_trig_o     = (valley && adc_trig_i[0]) || (peak && adc_trig_i[1]) || adc_pt != 2'b00;
+  assign adc_pt_o       = adc_pt;
   assign sync_o         = run_d && load;     // the next clock is a valley (a synced core starts with it)
   assign sector_o       = sector_q;
   assign cmp_o          = cmp_q;

@@ -138,6 +138,11 @@ module svpwm_mmio #(
   end
   assign period_clamp = period_clamp_core || period_over;
 
+  // TEMPORARY (issue 30): the ADC trigger points and the shunt-window report are not in the register map yet
+  logic [1:0]                unused_adc_pt, unused_win_recon;
+  logic [3*(CntWidth+1)-1:0] unused_win_lo, unused_win_hi;
+  logic [2:0]                unused_win_ok;
+
   svpwm_core #(
     .CntWidth (CntWidth), .PhaseWidth (PhaseWidth), .FreqWidth (FreqWidth), .DtWidth (DtWidth),
     .MinPeriod (MinPeriod), .FreqMax (FreqMax), .GatePol (GatePol),
@@ -147,11 +152,14 @@ module svpwm_mmio #(
     .theta_i (theta), .v1_i (v1), .v2_i (v2), .vf_boost_i (vf_boost), .vf_slope_i (vf_slope),
     .vf_mmax_i (vf_mmax), .dpwm_i (dpwm), .om_i (om), .vsc_en_i (!vsc_off), .upd_i (upd), .presc_i (presc),
     .period_i (period_core), .dt_i (dt), .dtf_i (dtf), .dtf_en_i (dtf_en), .mp_i (mp), .dtc_en_i (dtc_en),
+    .adc_pt_en_i (2'b00), .adc_pt_dn_i (2'b00), .adc_pt_cnt_i ('0), .win_min_i ('0),
     .isign_i (isign), .adc_trig_i (adc_trig), .sync_en_i (sync_en), .sync_i (sync_i),
     .fault_i (fault_i), .fault_clear_i (fault_clear), .trip_cbc_i (trip_cbc), .safe_lo_i (safe_lo),
     .pol_i (pol), .lock_i (lock),
     .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o), .carrier_o (carrier),
     .carrier_up_o (carrier_up), .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o),
+    .adc_pt_o (unused_adc_pt), .win_lo_o (unused_win_lo), .win_hi_o (unused_win_hi),
+    .win_ok_o (unused_win_ok), .win_recon_o (unused_win_recon),
     .adc_trig_o (adc_trig_o), .sync_o (sync_o), .sector_o (sector), .cmp_o (cmp),
     .period_o (period_act), .running_o (running_o), .sat_o (sat), .cfg_err_o (cfg_err),
     .period_clamp_o (period_clamp_core), .freq_clamp_o (freq_clamp), .fault_o (fault),

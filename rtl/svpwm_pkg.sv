@@ -22,13 +22,14 @@ package svpwm_pkg;
   localparam int FeatPresc = 11;
   localparam int FeatSync = 12;
   localparam int FeatDsp = 13;
+  localparam int FeatAdc = 14;
   // the named configurations (config.CONFIGS)
-  localparam logic [31:0] CfgFull = 32'h3fff;
-  localparam logic [31:0] CfgFoc = 32'h3f9c;
+  localparam logic [31:0] CfgFull = 32'h7fff;
+  localparam logic [31:0] CfgFoc = 32'h7f9c;
   localparam logic [31:0] CfgVf = 32'h21e3;
   localparam logic [31:0] CfgMinimal = 32'h2004;
   localparam logic [31:0] CfgTiny = 32'h0001;
-  localparam logic [31:0] CfgAll = 32'h3fff;
+  localparam logic [31:0] CfgAll = 32'h7fff;
   localparam logic [31:0] ModeFeatures = 32'h001f;   // every build has one
   // the features the calculator's program depends on (config.CALC); a mode a build lacks reaches the
   // calculator as this invalid code (the zero vector and err_o)

@@ -41,12 +41,17 @@ def sources() -> list[Path]:
 
 
 def wrapper_cells(params: dict[str, str]) -> int:
-    """Logic cells of the wrapper's input shift register: one per core input bit."""
-    p = {"CntWidth": 16, "FreqWidth": 24, "DtWidth": 10} | {k: int(v) for k, v in params.items()}
+    """Logic cells of the wrapper's shift registers: one per core input bit, and with the feature ADC
+    one per bit of the shunt-window report's output register and per ADC input bit."""
+    p = {"CntWidth": 16, "FreqWidth": 24, "DtWidth": 10, "Features": config.FULL} | \
+        {k: int(v) for k, v in params.items()}
     # svpwm_bench_top NIn: en, freq, m, period, dt, mp, 7 safety bits, then mode 3, theta / v1 / v2 /
     # vf_boost / vf_slope / vf_mmax 16 each, dpwm 2, upd 2, presc 8, adc_trig 2, sync_en, sync, dtf, dtf_en
-    return (1 + p["FreqWidth"] + 16 + p["CntWidth"] + 2 * p["DtWidth"] + 7 + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2
-            + p["DtWidth"] + 1)
+    n = (1 + p["FreqWidth"] + 16 + p["CntWidth"] + 2 * p["DtWidth"] + 7 + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2
+         + p["DtWidth"] + 1)
+    if config.has(p["Features"], "adc"):     # adc_pt_en 2, adc_pt_dn 2, adc_pt_cnt, win_min; NOut
+        n += 3 * p["CntWidth"] + 5 + 6 * (p["CntWidth"] + 1) + 5
+    return n
 
 
 def bench_device(dev: str, seeds: int, freq: float, jobs: int, params: dict[str, str],

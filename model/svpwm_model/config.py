@@ -17,6 +17,9 @@ build.
   sync                  the sync start (sync_en_i, sync_i)
   dsp                   the calculator's multiplier: 1 the registered 16 x 16 multiplier (the UP5K's SB_MAC16),
                         0 the serial shift-add unit (devices without a DSP; a longer program)
+  adc                   current sampling: two programmable ADC trigger points (adc_pt_*_i, shadowed like the
+                        compare values) and the per-phase shunt-window report (win_*_o) for a minimum window
+                        (win_min_i); without it: adc_trig_o at the valley / peak only (adc_trig_i)
 
 Named configurations (CONFIGS): full (every feature, the default), foc, vf, minimal, tiny. Only the programs
 of the named configurations are generated (calc_prog.program); a build with another mask stops at
@@ -25,7 +28,7 @@ elaboration with a message naming the mask (add it to CONFIGS and run `make rom`
 from __future__ import annotations
 
 FEATURES = ("freq", "vf", "polar", "ab", "dq", "dpwm", "sixstep", "dtc", "carry", "dtf", "upd", "presc",
-            "sync", "dsp")
+            "sync", "dsp", "adc")
 BIT = {n: i for i, n in enumerate(FEATURES)}
 ALL = (1 << len(FEATURES)) - 1
 
@@ -53,7 +56,7 @@ MODE_MASK = mask(*MODES)                             # at least one of them in e
 FULL = ALL
 CONFIGS: dict[str, int] = {
     "full": FULL,
-    "foc": mask("polar", "ab", "dq", "dtc", "carry", "dtf", "upd", "presc", "sync", "dsp"),
+    "foc": mask("polar", "ab", "dq", "dtc", "carry", "dtf", "upd", "presc", "sync", "dsp", "adc"),
     "vf": mask("freq", "vf", "dtc", "carry", "sixstep", "dpwm", "dsp"),
     "minimal": mask("polar", "dsp"),
     # TRANSITIONAL: tiny is the compact core (svpwm_core Compact = 1 before issue 28) and still runs its own
@@ -64,7 +67,7 @@ TINY = CONFIGS["tiny"]
 DESCRIPTION = {
     "full": "every feature (the default)",
     "foc": "POLAR, AB, DQ; dead-time compensation, carry, falling dead time, peak / double update, prescaler, "
-           "sync start; DSP multiplier",
+           "sync start, ADC trigger points and shunt-window report; DSP multiplier",
     "vf": "FREQ, VF; dead-time compensation, carry, six-step, DPWM; valley update; DSP multiplier",
     "minimal": "POLAR only, continuous SVPWM, valley update; DSP multiplier",
     "tiny": "FREQ only on the serial unit, valley update (the HX1K); mode_i ignored",

@@ -22,11 +22,13 @@ module tb_core_bench;
   tb_svpwm_core u_tb (
     .rst_ni, .en_i, .mode_i(3'd0), .freq_i(24'(freq)), .theta_i(16'd0), .v1_i(16'sd0), .v2_i(16'sd0),
     .vf_boost_i(16'd0), .vf_slope_i(16'd0), .vf_mmax_i(16'd0), .dpwm_i(2'd0), .upd_i(2'd0), .presc_i(8'd0),
+    .adc_pt_en_i (2'b00), .adc_pt_dn_i (2'b00), .adc_pt_cnt_i ('0), .win_min_i ('0),
     .adc_trig_i(2'd0), .om_i(1'b0), .vsc_en_i(1'b0), .dtc_en_i(1'b0), .isign_i(3'd0), .sync_en_i(1'b0),
     .sync_i(1'b0), .m_i(16'(m)), .period_i(16'(period)), .dt_i(10'(dt)),
     .dtf_i(10'd0), .dtf_en_i(1'b0), .mp_i(10'd0), .fault_i(1'b0), .fault_clear_i(1'b0), .trip_cbc_i(1'b0), .safe_lo_i(1'b0), .pol_i(2'd0),
     .lock_i(1'b0), .trace_i(1'b0), .clk,
     .mon(), .gate_hi_o(), .gate_lo_o(), .pole_o(), .carrier_o(), .carrier_up_o(), .valley_o(), .peak_o(),
+    .adc_pt_o (), .win_lo_o (), .win_hi_o (), .win_ok_o (), .win_recon_o (),
     .sector_o(), .cmp_o(), .period_o(), .running_o(), .update_o(), .adc_trig_o(), .sync_o(), .sat_o(),
     .cfg_err_o(), .period_clamp_o(), .freq_clamp_o(), .fault_o(), .tripped_o(), .locked_o(),
     .shoot_through_count(st), .dead_time_violations(dtv), .short_pulse_count(sp), .off_violations(off),

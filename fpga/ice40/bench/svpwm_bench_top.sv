@@ -28,16 +28,35 @@ module svpwm_bench_top #(
   output logic       period_clamp_o,
   output logic       cfg_err_o,
   output logic       adc_trig_o,
-  output logic       update_o
+  output logic       update_o,
+  output logic       win_sdo_o      // builds with ADC: the shunt-window report, shifted out (else 0)
 );
   localparam int B   = 1 + FreqWidth + 16 + CntWidth + DtWidth;   // first safety input bit
   localparam int R   = B + DtWidth + 7;                          // first input-mode bit
   localparam int F   = R + 3 + 6 * 16 + 2 + 2 + 8 + 2 + 2 + 6;     // falling dead time, its enable
-  localparam int NIn = F + DtWidth + 1;
+  localparam int A   = F + DtWidth + 1;                          // ADC points, minimum window (last:
+  localparam int NIn = A + 3 * CntWidth + 5;                     // unread, so removed, without ADC)
+  localparam bit HasAdc = svpwm_pkg::has(Features, svpwm_pkg::FeatAdc);
+  localparam int NOut = 6 * (CntWidth + 1) + 5;                  // the window report
 
   logic [NIn-1:0] in_q;
   always_ff @(posedge clk_i) begin
     if (shift_i) in_q <= {in_q[NIn-2:0], sdi_i};
+  end
+
+  // the window report leaves through an output shift register (loaded while shift_i is low), so that
+  // synthesis keeps it as a reader would: one logic cell per bit, subtracted like the input register
+  logic [NOut-1:0] win;
+  if (HasAdc) begin : gen_win_out
+    logic [NOut-1:0] out_q;
+    always_ff @(posedge clk_i) begin
+      out_q <= shift_i ? {out_q[NOut-2:0], 1'b0} : win;
+    end
+    assign win_sdo_o = out_q[NOut-1];
+  end else begin : gen_no_win_out
+    logic unused_win;
+    assign unused_win = ^win;
+    assign win_sdo_o  = 1'b0;
   end
 
   svpwm_core #(
@@ -64,6 +83,10 @@ module svpwm_bench_top #(
     .upd_i          (in_q[R + 101 +: 2]),
     .presc_i        (in_q[R + 103 +: 8]),
     .adc_trig_i     (in_q[R + 111 +: 2]),
+    .adc_pt_en_i    (in_q[A +: 2]),
+    .adc_pt_dn_i    (in_q[A + 2 +: 2]),
+    .adc_pt_cnt_i   (in_q[A + 4 +: 2 * CntWidth]),
+    .win_min_i      (in_q[A + 4 + 2 * CntWidth +: CntWidth + 1]),
     .sync_en_i      (in_q[R + 113]),
     .sync_i         (in_q[R + 114]),
     .dtc_en_i       (in_q[R + 115]),
@@ -90,6 +113,11 @@ module svpwm_bench_top #(
     .peak_o         (),
     .update_o       (update_o),
     .adc_trig_o     (adc_trig_o),
+    .adc_pt_o       (),
+    .win_lo_o       (win[0 +: 3 * (CntWidth + 1)]),
+    .win_hi_o       (win[3 * (CntWidth + 1) +: 3 * (CntWidth + 1)]),
+    .win_ok_o       (win[6 * (CntWidth + 1) +: 3]),
+    .win_recon_o    (win[6 * (CntWidth + 1) + 3 +: 2]),
     .sync_o         (),
     .sector_o       (sector_o),
     .cmp_o          (),

@@ -7,21 +7,26 @@
 // the active half period P fires at the peak. The points (en, dn, cnt) and the minimum window are
 // sampled with the reference (sample_i: the core's sample clock) and take effect with the compare values
 // computed from it (take_i: the update), like a shadow / active register pair, so the trigger points of a
-// period are those of its compare values.
-// Shunt-window report, per phase x from the active compare value C, half period P and dead times dt
-// (rising: before a high side) and dtf (falling: before a low side), the gates' on-times in a period
-// whose neighbour has the same values:
-//   win_lo = 2P if C == P, else max(2C - dtf, 0): the low side's on-time around the valley
-//   win_hi = 2P if C == 0, else max(2(P - C) - dt, 0): the high side's on-time around the peak
+// period are those of its compare values; none fire while stopped and before the first update of a run.
+// Shunt-window report, per phase x from the active compare value C, half period P, dead times dt (rising:
+// before a high side) and dtf (falling: before a low side) and minimum pulse mp in force: the gates'
+// on-times in the steady state of a period whose neighbours have the same values (svpwm_model/adc.py,
+// on_times; a gate once on stays on H = max(dt, dtf, mp, 1) clocks), with Dh = 2(P - C), Dl = 2C:
+//   C == P: lo = 2P, hi = 0;  C == 0: lo = 0, hi = 2P;  else h1 = max(Dh, dt + H),
+//   hi = h1 - dt (the high side around the peak: Dh - dt, or H when it is held on),
+//   lo = 2P - h1 - dtf (the low side around the valley: Dl - dtf, shortened by a held high side); the low
+//   side is never held (the minimum-pulse rule keeps Dl >= 2 (max(dt, dtf) + mp) >= dtf + H)
 //   win_ok[x] = win_lo[x] >= max(the minimum window, 1) (the ADC's settling + acquisition around its
-//               sample point)
+//               sample point: readable with a low-side shunt)
 //   win_recon = the phase with the shortest low-side window (the first of equal ones): read the other two
 //               and reconstruct it as minus their sum (i_a + i_b + i_c = 0)
 // all zero while the compare values are not valid (active_i low: stopped or tripped).
 // Parameters: CntWidth - carrier width (svpwm_core's), DtWidth - dead-time width.
-// Latency: pt_o combinational from registers (the carrier's count / direction, the active points);
-// win_lo_o / win_hi_o follow the active values and dead times one clock later, win_ok_o / win_recon_o
-// two clocks later.
+// Latency: pt_o combinational from registers (the carrier's count / direction, the active points).
+// The report is computed one phase per clock (a 3-stage pipeline, the phases in turn): win_lo_o /
+// win_hi_o show a change of the active values, dead times, minimum pulse or period after at most 7 clocks,
+// win_ok_o / win_recon_o after at most 8 (the core's report at 8 clocks after each valley and peak is what
+// tb/cocotb/svpwm_core/test_svpwm_adc.py compares with the model).
 `default_nettype none
 
 module svpwm_adc #(
@@ -46,6 +51,7 @@ module svpwm_adc #(
   input  logic [3*CntWidth-1:0]     cmp_i,         // {C_c, C_b, C_a} active
   input  logic [DtWidth-1:0]        dt_i,          // rising dead time in force
   input  logic [DtWidth-1:0]        dtf_i,         // falling dead time in force
+  input  logic [DtWidth-1:0]        mp_i,          // minimum pulse in force
   output logic [1:0]                pt_o,          // pulse: trigger point k
   output logic [3*(CntWidth+1)-1:0] win_lo_o,      // {c, b, a} low-side windows, clocks
   output logic [3*(CntWidth+1)-1:0] win_hi_o,      // {c, b, a} high-side windows, clocks
@@ -81,6 +87,7 @@ module svpwm_adc #(
       cnt_act_d = cnt_smp_q;
       min_act_d = min_smp_q;
     end
+    if (!run_i) en_act_d = '0;        // stopped: no point until the next run's first update
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -112,34 +119,65 @@ module svpwm_adc #(
                                      || (peak_i && cnt >= period_i) || (valley_i && cnt == '0));
   end
 
-  // ---- shunt-window report -----------------------------------------------------------------------
-  // the low side's window around the valley: 2C clocks of pole low, less the falling dead time (none
-  // when the pole never goes high, C == P); the high side's around the peak: 2(P - C) less the rising one
-  function automatic logic [WW-1:0] lo_window(input logic [CntWidth-1:0] c, input logic [CntWidth-1:0] p,
-                                              input logic [DtWidth-1:0] dtf);
-    logic [WW-1:0] lo2;
-    lo2 = {c, 1'b0};
-    lo_window = (c == p) ? lo2 : (lo2 >= WW'(dtf)) ? lo2 - WW'(dtf) : '0;
-  endfunction
+  // ---- shunt-window report: one phase at a time through a 3-stage pipeline (phase_q turns 0, 1, 2 every
+  // clock), so one datapath serves the three phases (svpwm_model/adc.py: on_times) ------------------------------------------------
+  localparam int DW = DtWidth + 1;
 
-  function automatic logic [WW-1:0] hi_window(input logic [CntWidth-1:0] c, input logic [CntWidth-1:0] p,
-                                              input logic [DtWidth-1:0] dt);
-    logic [WW-1:0] hi2;
-    hi2 = {p - c, 1'b0};
-    hi_window = (c == '0) ? hi2 : (hi2 >= WW'(dt)) ? hi2 - WW'(dt) : '0;
-  endfunction
+  // the shared terms, registered in two steps: H = max(dt, dtf, mp, 1), then dt + H and 2P - dtf
+  logic [DtWidth-1:0]  h_d, h_q, dt1_q, dtf1_q;
+  logic [CntWidth-1:0] p1_q;
+  logic [DW-1:0]       kdh_d, kdh_q;
+  logic [WW-1:0]       k2p_d, k2p_q, p2_q;
 
+  always_comb begin
+    h_d = (dt_i >= dtf_i) ? dt_i : dtf_i;
+    if (mp_i > h_d) h_d = mp_i;
+    if (h_d == '0)  h_d = DtWidth'(1);
+  end
+  assign kdh_d = {1'b0, dt1_q} + {1'b0, h_q};
+  assign k2p_d = {p1_q, 1'b0} - WW'(dtf1_q);
+
+  // stage 1: the phase's high pole pulse Dh = 2(P - C) (the low side is never held past the pole's rise:
+  // r = 0, since the minimum-pulse rule keeps 2C >= 2 (max(dt, dtf) + mp) >= dtf + H)
+  logic [1:0]          phase_d, phase_q, ph1_q, ph2_q;
+  logic [CntWidth-1:0] c1;
+  logic [WW-1:0]       dh1_d, dh1_q;
+  logic                full_lo1_d, full_lo1_q, full_hi1_d, full_hi1_q;
+
+  assign phase_d    = (phase_q == 2'd2) ? 2'd0 : phase_q + 2'd1;
+  assign c1         = cmp_i[phase_q*CntWidth +: CntWidth];
+  assign dh1_d      = {p1_q - c1, 1'b0};
+  assign full_lo1_d = c1 == p1_q;                   // low side on the whole period
+  assign full_hi1_d = c1 == '0;
+
+  // stage 2: the high side off at h1 = max(Dh, dt + H) (held on for H)
+  logic [WW-1:0] h1_d, h1_q;
+  logic          full_lo2_q, full_hi2_q, act2_q, act1_q;
+
+  assign h1_d = (dh1_q >= WW'(kdh_q)) ? dh1_q : WW'(kdh_q);
+
+  // stage 3: hi = h1 - dt, lo = 2P - h1 - dtf into the phase's result registers
   logic [3*WW-1:0] lo_d, lo_q, hi_d, hi_q;
-  logic [2:0]      ok_d, ok_q;
-  logic [1:0]      recon_d, recon_q;
-  logic [WW-1:0]   lo_a, lo_b, lo_c;
+  logic [WW-1:0]   lo3, hi3;
 
-  for (genvar ph = 0; ph < 3; ph++) begin : gen_window
-    assign lo_d[ph*WW +: WW] = active_i ? lo_window(cmp_i[ph*CntWidth +: CntWidth], period_i, dtf_i) : '0;
-    assign hi_d[ph*WW +: WW] = active_i ? hi_window(cmp_i[ph*CntWidth +: CntWidth], period_i, dt_i) : '0;
-    assign ok_d[ph]          = lo_q[ph*WW +: WW] != '0 && lo_q[ph*WW +: WW] >= min_act_q;
+  assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : k2p_q - h1_q;
+  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q : h1_q - WW'(dt1_q);
+
+  always_comb begin
+    lo_d = lo_q;
+    hi_d = hi_q;
+    lo_d[ph2_q*WW +: WW] = lo3;
+    hi_d[ph2_q*WW +: WW] = hi3;
   end
 
+  // the readable mask and the phase to reconstruct, from the results
+  logic [2:0]    ok_d, ok_q;
+  logic [1:0]    recon_d, recon_q;
+  logic [WW-1:0] lo_a, lo_b, lo_c;
+
+  for (genvar ph = 0; ph < 3; ph++) begin : gen_ok
+    assign ok_d[ph] = lo_q[ph*WW +: WW] != '0 && lo_q[ph*WW +: WW] >= min_act_q;
+  end
   assign lo_a    = lo_q[0 +: WW];
   assign lo_b    = lo_q[WW +: WW];
   assign lo_c    = lo_q[2*WW +: WW];
@@ -147,15 +185,51 @@ module svpwm_adc #(
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      lo_q    <= '0;
-      hi_q    <= '0;
-      ok_q    <= '0;
-      recon_q <= '0;
+      h_q        <= '0;
+      dt1_q      <= '0;
+      dtf1_q     <= '0;
+      p1_q       <= '0;
+      p2_q       <= '0;
+      kdh_q      <= '0;
+      k2p_q      <= '0;
+      phase_q    <= '0;
+      ph1_q      <= '0;
+      ph2_q      <= '0;
+      dh1_q      <= '0;
+      full_lo1_q <= 1'b0;
+      full_hi1_q <= 1'b0;
+      act1_q     <= 1'b0;
+      h1_q       <= '0;
+      full_lo2_q <= 1'b0;
+      full_hi2_q <= 1'b0;
+      act2_q     <= 1'b0;
+      lo_q       <= '0;
+      hi_q       <= '0;
+      ok_q       <= '0;
+      recon_q    <= '0;
     end else begin
-      lo_q    <= lo_d;
-      hi_q    <= hi_d;
-      ok_q    <= ok_d;
-      recon_q <= recon_d;
+      h_q        <= h_d;
+      dt1_q      <= dt_i;
+      dtf1_q     <= dtf_i;
+      p1_q       <= period_i;
+      p2_q       <= {p1_q, 1'b0};
+      kdh_q      <= kdh_d;
+      k2p_q      <= k2p_d;
+      phase_q    <= phase_d;
+      ph1_q      <= phase_q;
+      ph2_q      <= ph1_q;
+      dh1_q      <= dh1_d;
+      full_lo1_q <= full_lo1_d;
+      full_hi1_q <= full_hi1_d;
+      act1_q     <= active_i;
+      h1_q       <= h1_d;
+      full_lo2_q <= full_lo1_q;
+      full_hi2_q <= full_hi1_q;
+      act2_q     <= act1_q;
+      lo_q       <= lo_d;
+      hi_q       <= hi_d;
+      ok_q       <= ok_d;
+      recon_q    <= recon_d;
     end
   end
 

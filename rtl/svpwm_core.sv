@@ -881,6 +881,7 @@ module svpwm_core #(
       .cmp_i       (cmp_q),
       .dt_i        (dt_q),
       .dtf_i       (dtf_act),
+      .mp_i        (mp_q),
       .pt_o        (adc_pt),
       .win_lo_o    (win_lo_o),
       .win_hi_o    (win_hi_o),

@@ -13,16 +13,27 @@ included). A trigger point (en, dn, cnt) fires once per period in the clock
 The points and the minimum window are sampled with the reference and take effect with the compare values
 computed from it (the update), so the points of a period are those its compare values came with.
 
-Shunt windows (the gates' on-times in a period whose neighbour has the same values; rtl/svpwm_compare.sv: a
-pole is high for the clocks [C, 2P - C) of a period, so 2C clocks low around the valley and 2(P - C) high
-around the peak; the gate that turns on waits the dead time, the one that turns off does not):
+Shunt windows: the gates' on-times in the steady state of a period whose neighbours have the same values
+(rtl/svpwm_compare.sv: a pole is high for the clocks [C, 2P - C) of a period, so Dh = 2(P - C) clocks high
+around the peak and Dl = 2C low around the valley; rtl/deadtime.sv, deadtime.py: the gate that turns on
+waits its edge's dead time after the other turned off -- dt before a high side, dtf before a low side --
+and a gate, once on, stays on at least H = max(dt, dtf, mp, 1) clocks):
 
-    lo = 2P if C == P else max(2C - dtf, 0)        low side, around the valley (dtf: falling dead time,
-                                                   the wait before a low side)
-    hi = 2P if C == 0 else max(2(P - C) - dt, 0)   high side, around the peak (dt: rising dead time)
-    ok = lo >= max(win_min, 1)                     readable with a low-side shunt
+    C == P: lo = 2P, hi = 0          C == 0: lo = 0, hi = 2P
+    else, with the pole rising at 0 and falling at Dh:
+      h1 = max(Dh, dt + H)           the high side: on at dt, off at the pole's fall or after H
+      hi = h1 - dt                   around the peak
+      lo = 2P - h1 - dtf             around the valley: on at h1 + dtf, off at the next rise
+    ok = lo >= max(win_min, 1)       readable with a low-side shunt
     recon = the phase with the smallest lo (the first of equal ones): the one to reconstruct from the other
             two (i_a + i_b + i_c = 0)
+
+Without the minimum on-time (h1 = Dh) these are Dh - dt and Dl - dtf. The low side is never held on past
+the pole's rise: the minimum-pulse rule (fixed.snap_min_pulse) keeps every C in (0, P) >= thr = max(dt, dtf)
++ mp, so Dl = 2C >= dtf + H; the high pulse only has P - C >= ceil(thr / 2), so Dh - dt may fall short of H.
+(In general the low side would turn off r = max(0, dtf + H - Dl) late and the next high pulse start r later;
+no compare value the calculator gives reaches that, and on_times asserts it.) test_adc.py checks them against the model's gate
+edges (core.run + deadtime.py).
 
 All zero (recon 0) while the compare values are not valid (stopped, or tripped). test_adc.py checks these
 formulas against the model's gate edges (core.run + deadtime).
@@ -72,12 +83,27 @@ class Window:
     recon: int               # the phase to reconstruct
 
 
-def window(cmp: tuple[int, int, int] | None, period: int, dt: int, dtf: int, win_min: int) -> Window:
-    """The report for the active compare values ``cmp`` (None: not valid -> all zero)."""
+def on_times(c: int, period: int, dt: int, dtf: int, mp: int) -> tuple[int, int]:
+    """(lo, hi): the low side's window around the valley and the high side's around the peak."""
+    if c == period:
+        return 2 * period, 0
+    if c == 0:
+        return 0, 2 * period
+    h = max(dt, dtf, mp, 1)
+    dh, dl = 2 * (period - c), 2 * c
+    assert dl >= dtf + h, f"C = {c}: a low pole pulse shorter than dtf + H ({dtf} + {h}): not a snapped value"
+    h1 = max(dh, dt + h)
+    return 2 * period - h1 - dtf, h1 - dt
+
+
+def window(cmp: tuple[int, int, int] | None, period: int, dt: int, dtf: int, mp: int, win_min: int) -> Window:
+    """The report for the active compare values ``cmp`` (None: not valid -> all zero), the dead times and
+    minimum pulse in force."""
     if cmp is None:
         return Window((0, 0, 0), (0, 0, 0), 0, 0)
-    lo = tuple(2 * period if c == period else max(2 * c - dtf, 0) for c in cmp)
-    hi = tuple(2 * period if c == 0 else max(2 * (period - c) - dt, 0) for c in cmp)
+    t = [on_times(c, period, dt, dtf, mp) for c in cmp]
+    lo = (t[0][0], t[1][0], t[2][0])
+    hi = (t[0][1], t[1][1], t[2][1])
     ok = sum(1 << ph for ph in range(3) if lo[ph] >= max(win_min, 1))
     recon = min(range(3), key=lambda ph: (lo[ph], ph))
     return Window(lo, hi, ok, recon)

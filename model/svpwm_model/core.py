@@ -31,7 +31,7 @@ import bisect
 from dataclasses import dataclass, field, replace
 from typing import Callable, Sequence
 
-from . import calc_prog, config, fixed
+from . import adc, calc_prog, config, fixed
 from .deadtime import HI, LO, OFF, LegState, simulate_events
 
 
@@ -61,6 +61,10 @@ class Inputs:
     om: int = 0             # overmodulation law: 0 angle-keeping clamp, 1 six-step (not in the compact core)
     vsc: int = 0            # 1: volt-second carry of the minimum-pulse rule (the register map's default; not in
                             # the compact core)
+    # feature adc (svpwm_model.adc): the two ADC trigger points and the minimum shunt window, sampled with the
+    # reference (keyword-only, like dtf)
+    adc_pt: tuple[adc.Point, adc.Point] = field(default=(adc.Point(), adc.Point()), kw_only=True)
+    win_min: int = field(default=0, kw_only=True)
 
 
 @dataclass(frozen=True)
@@ -78,6 +82,8 @@ class Update:
     period: int             # half period the values were computed for
     carry_in: tuple[int, int, int] = (0, 0, 0)    # volt-second carry added before the minimum-pulse rule
     carry: tuple[int, int, int] = (0, 0, 0)       # what the rule dropped or widened (given to the next update)
+    adc_pt: tuple[adc.Point, adc.Point] = (adc.Point(), adc.Point())   # trigger points sampled with it
+    win_min: int = 0                              # minimum shunt window sampled with it
 
 
 @dataclass
@@ -98,6 +104,11 @@ class Run:
     updates: list[Update] = field(default_factory=list)      # every update, in time order
     pole_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, pole word {c,b,a})
     gate_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, {lo[2:0], hi[2:0]})
+    # feature adc: (cycle, {point 1, point 0}) of every trigger-point pulse (adc_pt_o), and per half period
+    # (start cycle: a valley or a peak, the report of the values active in it: adc.window) -- the report
+    # outputs show it from the start + 8 on at the latest (rtl/svpwm_adc.sv)
+    adc_fires: list[tuple[int, int]] = field(default_factory=list)
+    windows: list[tuple[int, adc.Window]] = field(default_factory=list)
     end: int = 0                                           # edges are listed for cycles < end
 
 
@@ -127,7 +138,9 @@ def as_built(u: Inputs, features: int) -> Inputs:
                    dpwm=u.dpwm if has("dpwm") else fixed.DPWM_OFF, upd=u.upd if has("upd") else fixed.UPD_VALLEY,
                    presc=u.presc if has("presc") else 0, dtf=u.dtf if has("dtf") else None,
                    dtc=u.dtc if has("dtc") else 0, isign=u.isign if has("dtc") else 0,
-                   om=u.om if has("sixstep") else 0, vsc=u.vsc if has("carry") else 0)
+                   om=u.om if has("sixstep") else 0, vsc=u.vsc if has("carry") else 0,
+                   adc_pt=u.adc_pt if has("adc") else (adc.Point(), adc.Point()),
+                   win_min=u.win_min if has("adc") else 0)
 
 
 def falling_dt(u: Inputs) -> int:
@@ -226,7 +239,7 @@ class CoreModel:
                 m_used = None
             return Update(load=s + lead, sample=s, at_peak=at_peak, theta=th, m=m_used, sector=sec, cmp=cmp,
                           carry_in=c_in, carry=c_out,
-                          sat=sat, err=err, period=period)
+                          sat=sat, err=err, period=period, adc_pt=u.adc_pt, win_min=u.win_min)
 
         n_total = n_periods if stop is None else n_periods + 1
         for n in range(n_total):
@@ -318,6 +331,28 @@ class CoreModel:
                 lst += [(a, 1), (b, 0)]
             pole_ch[ph] = [(c, v) for c, v in lst if c < end]
         r.pole_edges = _merge(pole_ch, 3)
+        # ---- feature adc: trigger points (the values of each half's update; off before the first) and the
+        # shunt-window report (the dead times of the period) ----
+        if config.has(self.features, "adc"):
+            fires: dict[int, int] = {}
+            for k, (h0, p, vals) in enumerate(halves):
+                n = k // 2
+                if n >= len(r.dt):
+                    dt_h, dtf_h, mp_h = dt_cur, dtf_cur, mp_cur
+                else:
+                    dt_h, dtf_h, mp_h = r.dt[n], r.dtf[n], r.mp[n]
+                r.windows.append((h0, adc.window(vals.cmp if vals else None, p, dt_h, dtf_h, mp_h,
+                                                 vals.win_min if vals else 0)))
+                if vals is None:
+                    continue
+                for j, pt in enumerate(vals.adc_pt):
+                    kc = adc.point_clock(pt, p)
+                    if kc is None or (kc < p) != (k % 2 == 0):
+                        continue
+                    c = h0 + (kc if k % 2 == 0 else kc - p)
+                    if c < end and (stop_cycle is None or c <= stop_cycle):
+                        fires[c] = fires.get(c, 0) | 1 << j
+            r.adc_fires = sorted(fires.items())
         # ---- gates: target per leg, piecewise constant; dead times and minimum pulse change one clock
         # after each valley (rtl/deadtime.sv reads the core's dt_q / dtf_q / mp_q a clock ahead) ----
         first = [x.load for x in r.updates if stop_cycle is None or x.load <= stop_cycle]

@@ -39,6 +39,9 @@ class RtlRun:
     running: list[int] = field(default_factory=list)
     sat: list[bool] = field(default_factory=list)
     updates: list[int] = field(default_factory=list)     # cycles update_o was high
+    adc_fires: list[tuple[int, int]] = field(default_factory=list)   # (cycle, adc_pt_o) while nonzero
+    adc_at: list[tuple[int, int]] = field(default_factory=list)      # (carrier_o, carrier_up_o) at those
+    windows: list[tuple[int, tuple]] = field(default_factory=list)   # (cycle, (lo, hi, ok, recon))
 
 
 class Clock(NamedTuple):
@@ -109,6 +112,11 @@ class CoreTB:
         d.om_i.value = u.om
         d.vsc_en_i.value = u.vsc
         d.isign_i.value = u.isign & 7
+        w = len(d.period_i)
+        d.adc_pt_en_i.value = sum(int(p.en) << k for k, p in enumerate(u.adc_pt))
+        d.adc_pt_dn_i.value = sum(int(p.dn) << k for k, p in enumerate(u.adc_pt))
+        d.adc_pt_cnt_i.value = sum((p.cnt & ((1 << w) - 1)) << (k * w) for k, p in enumerate(u.adc_pt))
+        d.win_min_i.value = u.win_min
 
     def set_safety(self, fault=0, fault_clear=0, cbc=0, safe_lo=0, pol=0, lock=0) -> None:
         d = self.dut
@@ -315,6 +323,13 @@ def parse_record(lines: list[list[str]], t0: float, cmp_width: int, n_periods: i
             mon.append((c, int(rec[2], 16)))
         elif rec[0] == "U":
             upd.append(c)
+        elif rec[0] == "A":
+            rtl.adc_fires.append((c, int(rec[2], 16)))
+            rtl.adc_at.append((int(rec[3], 16), int(rec[4], 16)))
+        elif rec[0] == "W":
+            ww = w + 1
+            sp = lambda x: tuple((x >> (ww * ph)) & ((1 << ww) - 1) for ph in range(3))   # noqa: E731
+            rtl.windows.append((c, (sp(int(rec[2], 16)), sp(int(rec[3], 16)), int(rec[4], 16), int(rec[5], 16))))
         elif rec[0] == "P" and c >= 1 and n_p < n_periods:
             n_p += 1
             rtl.cmp_peak.append(split(int(rec[2], 16)) if int(rec[3], 16) else None)

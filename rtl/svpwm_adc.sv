@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_adc: current sampling support of svpwm_core (feature ADC): two programmable ADC trigger points
 // and the per-phase shunt-window report (model: svpwm_model/adc.py, docs/reference.md "Current sampling").
-// Trigger points: point k fires (pt_o[k], one clock) once per carrier period while the carrier runs: in
-// the clock where the carrier is at count cnt_k counting up (dn_k = 0) or down (dn_k = 1); the valley
-// (count 0) and the peak (count P) are one clock each and fire for either direction, and a count beyond
-// the active half period P fires at the peak. The points (en, dn, cnt) and the minimum window are
+// Trigger points: point k fires (pt_o[k], one clock, registered: in the clock after) once per carrier
+// period while the carrier runs, at the clock where the carrier is at count cnt_k counting up (dn_k = 0)
+// or down (dn_k = 1); the valley (count 0) and the peak (count P) are one clock each and fire for either
+// direction, and a count beyond the active half period P fires at the peak. The points (en, dn, cnt) and the minimum window are
 // sampled with the reference (sample_i: the core's sample clock) and take effect with the compare values
 // computed from it (take_i: the update), like a shadow / active register pair, so the trigger points of a
 // period are those of its compare values; none fire while stopped and before the first update of a run.
@@ -22,10 +22,10 @@
 //               and reconstruct it as minus their sum (i_a + i_b + i_c = 0)
 // all zero while the compare values are not valid (active_i low: stopped or tripped).
 // Parameters: CntWidth - carrier width (svpwm_core's), DtWidth - dead-time width.
-// Latency: pt_o combinational from registers (the carrier's count / direction, the active points).
+// Latency: pt_o one clock after the carrier was at the point (a register).
 // The report is computed one phase per clock (a 3-stage pipeline, the phases in turn): win_lo_o /
-// win_hi_o show a change of the active values, dead times, minimum pulse or period after at most 7 clocks,
-// win_ok_o / win_recon_o after at most 8 (the core's report at 8 clocks after each valley and peak is what
+// win_hi_o show a change of the active values, dead times, minimum pulse or period after at most 8 clocks,
+// win_ok_o / win_recon_o after at most 9 (the core's report at 9 clocks after each valley and peak is what
 // tb/cocotb/svpwm_core/test_svpwm_adc.py compares with the model).
 `default_nettype none
 
@@ -112,27 +112,39 @@ module svpwm_adc #(
     end
   end
 
+  // the pulse is registered: it comes in the clock after the carrier was at the point (a clean output
+  // for an ADC's start input, and no carrier compare on the path to a pin)
+  logic [1:0] pt_d, pt_q;
+
   for (genvar k = 0; k < 2; k++) begin : gen_point
     logic [CntWidth-1:0] cnt;
-    assign cnt   = cnt_act_q[k*CntWidth +: CntWidth];
-    assign pt_o[k] = en_act_q[k] && ((run_i && count_i == cnt && up_i == !dn_act_q[k])
+    assign cnt     = cnt_act_q[k*CntWidth +: CntWidth];
+    assign pt_d[k] = en_act_q[k] && ((run_i && count_i == cnt && up_i == !dn_act_q[k])
                                      || (peak_i && cnt >= period_i) || (valley_i && cnt == '0));
   end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) pt_q <= '0;
+    else         pt_q <= pt_d;
+  end
+
+  assign pt_o = pt_q;
 
   // ---- shunt-window report: one phase at a time through a 3-stage pipeline (phase_q turns 0, 1, 2 every
   // clock), so one datapath serves the three phases (svpwm_model/adc.py: on_times) ------------------------------------------------
   localparam int DW = DtWidth + 1;
 
-  // the shared terms, registered in two steps: H = max(dt, dtf, mp, 1), then dt + H and 2P - dtf
-  logic [DtWidth-1:0]  h_d, h_q, dt1_q, dtf1_q;
+  // the shared terms, registered step by step (the core's dead-time registers are far away): the inputs,
+  // max(dt, dtf), H = max(dt, dtf, mp, 1), then dt + H and 2P - dtf
+  logic [DtWidth-1:0]  dt1_q, dtf1_q, mp1_q, m_d, m_q, h_d, h_q;
   logic [CntWidth-1:0] p1_q;
   logic [DW-1:0]       kdh_d, kdh_q;
   logic [WW-1:0]       k2p_d, k2p_q, p2_q;
 
+  assign m_d = (dt1_q >= dtf1_q) ? dt1_q : dtf1_q;
   always_comb begin
-    h_d = (dt_i >= dtf_i) ? dt_i : dtf_i;
-    if (mp_i > h_d) h_d = mp_i;
-    if (h_d == '0)  h_d = DtWidth'(1);
+    h_d = (mp1_q > m_q) ? mp1_q : m_q;
+    if (h_d == '0) h_d = DtWidth'(1);
   end
   assign kdh_d = {1'b0, dt1_q} + {1'b0, h_q};
   assign k2p_d = {p1_q, 1'b0} - WW'(dtf1_q);
@@ -145,7 +157,14 @@ module svpwm_adc #(
   logic                full_lo1_d, full_lo1_q, full_hi1_d, full_hi1_q;
 
   assign phase_d    = (phase_q == 2'd2) ? 2'd0 : phase_q + 2'd1;
-  assign c1         = cmp_i[phase_q*CntWidth +: CntWidth];
+  // (a case, not an indexed part-select: Yosys builds the index product as an adder chain)
+  always_comb begin
+    unique case (phase_q)
+      2'd1:    c1 = cmp_i[CntWidth +: CntWidth];
+      2'd2:    c1 = cmp_i[2*CntWidth +: CntWidth];
+      default: c1 = cmp_i[0 +: CntWidth];
+    endcase
+  end
   assign dh1_d      = {p1_q - c1, 1'b0};
   assign full_lo1_d = c1 == p1_q;                   // low side on the whole period
   assign full_hi1_d = c1 == '0;
@@ -163,11 +182,9 @@ module svpwm_adc #(
   assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : k2p_q - h1_q;
   assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q : h1_q - WW'(dt1_q);
 
-  always_comb begin
-    lo_d = lo_q;
-    hi_d = hi_q;
-    lo_d[ph2_q*WW +: WW] = lo3;
-    hi_d[ph2_q*WW +: WW] = hi3;
+  for (genvar ph = 0; ph < 3; ph++) begin : gen_result
+    assign lo_d[ph*WW +: WW] = (ph2_q == 2'(ph)) ? lo3 : lo_q[ph*WW +: WW];
+    assign hi_d[ph*WW +: WW] = (ph2_q == 2'(ph)) ? hi3 : hi_q[ph*WW +: WW];
   end
 
   // the readable mask and the phase to reconstruct, from the results
@@ -186,8 +203,10 @@ module svpwm_adc #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       h_q        <= '0;
+      m_q        <= '0;
       dt1_q      <= '0;
       dtf1_q     <= '0;
+      mp1_q      <= '0;
       p1_q       <= '0;
       p2_q       <= '0;
       kdh_q      <= '0;
@@ -209,8 +228,10 @@ module svpwm_adc #(
       recon_q    <= '0;
     end else begin
       h_q        <= h_d;
+      m_q        <= m_d;
       dt1_q      <= dt_i;
       dtf1_q     <= dtf_i;
+      mp1_q      <= mp_i;
       p1_q       <= period_i;
       p2_q       <= {p1_q, 1'b0};
       kdh_q      <= kdh_d;

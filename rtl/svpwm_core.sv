@@ -123,7 +123,7 @@ module svpwm_core #(
   output logic                        peak_o,          // pulse: carrier peak
   output logic                        update_o,        // pulse: new compare values active from this clock
   output logic                        adc_trig_o,      // pulse: ADC trigger (valley, peak, points)
-  output logic [1:0]                  adc_pt_o,        // pulse: trigger point k
+  output logic [1:0]                  adc_pt_o,        // pulse: trigger point k (the clock after)
   output logic [3*(CntWidth+1)-1:0]   win_lo_o,        // {c, b, a} low-side windows around the valley
   output logic [3*(CntWidth+1)-1:0]   win_hi_o,        // {c, b, a} high-side windows around the peak
   output logic [2:0]                  win_ok_o,        // {c, b, a} low-side window >= win_min_i

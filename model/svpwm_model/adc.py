@@ -4,7 +4,8 @@ report, bit-exact with the RTL.
 
 Carrier (rtl/svpwm_carrier.sv): a period of half period P is 2P clocks; clock k = 0 .. 2P-1 of it has the
 count k while counting up (k < P, the valley k = 0 included) and 2P - k while counting down (the peak k = P
-included). A trigger point (en, dn, cnt) fires once per period in the clock
+included). A trigger point (en, dn, cnt) fires once per period, its pulse (adc_pt_o, a register) in the clock
+after the one
 
     k = 0                 if cnt == 0 (the valley, either direction)
     k = P                 if cnt >= P (the peak, either direction; a count beyond P is clamped to it)
@@ -52,7 +53,8 @@ class Point:
 
 
 def point_clock(pt: Point, period: int) -> int | None:
-    """Clock index k (0 .. 2P-1, 0 = the valley) of a period at which the point fires; None if it is off."""
+    """Clock index k (0 .. 2P-1, 0 = the valley) of a period at which the carrier is at the point (its pulse
+    comes in clock k + 1); None if it is off."""
     if not pt.en:
         return None
     if pt.cnt == 0:
@@ -63,7 +65,8 @@ def point_clock(pt: Point, period: int) -> int | None:
 
 
 def fires(pt: Point, count: int, up: bool, period: int) -> bool:
-    """The RTL's rule, per clock (svpwm_adc gen_point): the carrier at (count, up) of a running period."""
+    """The RTL's rule, per clock (svpwm_adc gen_point, pt_d): the carrier at (count, up) of a running period
+    is at the point (the pulse follows in the next clock)."""
     if not pt.en:
         return False
     return ((count == pt.cnt and up == (not pt.dn)) or (count == period and pt.cnt >= period)

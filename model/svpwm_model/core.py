@@ -104,9 +104,10 @@ class Run:
     updates: list[Update] = field(default_factory=list)      # every update, in time order
     pole_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, pole word {c,b,a})
     gate_edges: list[tuple[int, int]] = field(default_factory=list)    # (cycle, {lo[2:0], hi[2:0]})
-    # feature adc: (cycle, {point 1, point 0}) of every trigger-point pulse (adc_pt_o), and per half period
+    # feature adc: (cycle, {point 1, point 0}) of every trigger-point pulse (adc_pt_o: the clock after the
+    # carrier was at the point), and per half period
     # (start cycle: a valley or a peak, the report of the values active in it: adc.window) -- the report
-    # outputs show it from the start + 8 on at the latest (rtl/svpwm_adc.sv)
+    # outputs show it from the start + 9 on at the latest (rtl/svpwm_adc.sv)
     adc_fires: list[tuple[int, int]] = field(default_factory=list)
     windows: list[tuple[int, adc.Window]] = field(default_factory=list)
     end: int = 0                                           # edges are listed for cycles < end
@@ -349,9 +350,9 @@ class CoreModel:
                     kc = adc.point_clock(pt, p)
                     if kc is None or (kc < p) != (k % 2 == 0):
                         continue
-                    c = h0 + (kc if k % 2 == 0 else kc - p)
-                    if c < end and (stop_cycle is None or c <= stop_cycle):
-                        fires[c] = fires.get(c, 0) | 1 << j
+                    c = h0 + (kc if k % 2 == 0 else kc - p)          # the carrier at the point
+                    if c + 1 < end and (stop_cycle is None or c <= stop_cycle):
+                        fires[c + 1] = fires.get(c + 1, 0) | 1 << j  # the registered pulse
             r.adc_fires = sorted(fires.items())
         # ---- gates: target per leg, piecewise constant; dead times and minimum pulse change one clock
         # after each valley (rtl/deadtime.sv reads the core's dt_q / dtf_q / mp_q a clock ahead) ----

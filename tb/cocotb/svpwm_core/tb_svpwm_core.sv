@@ -185,7 +185,7 @@ module tb_svpwm_core #(
   //   U t                                       each rising edge of update_o, likewise
   //   A t pts carrier up                        each clock with an ADC trigger point (adc_pt_o), likewise
   //                                             (written at the next rising edge, with t of this one + 1)
-  //   W t lo hi ok recon                        8 clocks after each valley and peak: the shunt-window report
+  //   W t lo hi ok recon                        9 clocks after each valley and peak: the shunt-window report
   //   C t valley peak period adc carrier tripped fault hi lo pclamp carry  each rising clock edge while
   //                                             trace_i is high (hi / lo: the gates as gate_hi_o / gate_lo_o;
   //                                             carry: the core's volt-second carry register car_q),
@@ -231,7 +231,7 @@ module tb_svpwm_core #(
     $fflush(rec_fd);
   end
   always @(posedge valley_o or posedge peak_o) if (rec_fd != 0) begin
-    repeat (8) @(posedge clk);
+    repeat (9) @(posedge clk);
     #1;
     $fwrite(rec_fd, "W %0d %0h %0h %0h %0h\n", $time, win_lo_o, win_hi_o, win_ok_o, win_recon_o);
     $fflush(rec_fd);

@@ -2,7 +2,7 @@
 """Feature adc (issue 30 items 1, 2): the ADC trigger points and the shunt-window report of svpwm_core
 (rtl/svpwm_adc.sv) against the golden model (svpwm_model.core with svpwm_model.adc), on the builds that have
 the feature (full = "default", foc), both simulators; the harness tb_svpwm_core.sv records every adc_pt_o
-pulse with the carrier (A lines) and the report 8 clocks after every valley and peak (W lines: its latency bound).
+pulse with the carrier (A lines) and the report 9 clocks after every valley and peak (W lines: its latency bound).
 
 * points_valley: POLAR at m = 1.1, 1.12 (near the hexagon: the largest phase's low-side window closes), 0.86
   and m = 0.5, the angle stepping through every sector, separate falling dead times, minimum pulses up to
@@ -76,19 +76,19 @@ def check_adc(rtl, exp, cov: dict, h: int = 0) -> None:
     starts = sorted(halves)
     n_win = 0
     for c, got in rtl.windows:
-        h0 = c - 8
+        h0 = c - 9
         if h0 not in halves or c >= exp.end:
             continue
         w = halves[h0]
         assert got == (w.lo, w.hi, w.ok, w.recon), (
-            f"shunt-window report 8 clocks after the half period at cycle {h0}: RTL (lo, hi, ok, recon) {got} "
+            f"shunt-window report 9 clocks after the half period at cycle {h0}: RTL (lo, hi, ok, recon) {got} "
             f"!= model {w}")
         n_win += 1
         cov["ok0"] += w.ok != 0b111 and w.lo != (0, 0, 0)
         cov["ok1"] += w.ok != 0
         cov["recon"].add(w.recon)
         cov["hi_held"] += h in w.hi          # a high side held on for the minimum on-time H
-    assert n_win >= len([h for h in starts if h + 8 < exp.end]) - 1, "report records missing"
+    assert n_win >= len([h for h in starts if h + 9 < exp.end]) - 1, "report records missing"
     for (c, bits), (cnt, up) in zip(rtl.adc_fires, rtl.adc_at):
         cov["up"] += up
         cov["down"] += not up
@@ -186,8 +186,8 @@ async def points_stop_restart(dut):
         assert all(c >= first for c, _ in rtl.adc_fires), f"run {k}: a pulse before the first update"
         halves = dict(exp.windows)
         for c, got in rtl.windows:
-            if c - 8 in halves and c < exp.end:
-                w = halves[c - 8]
+            if c - 9 in halves and c < exp.end:
+                w = halves[c - 9]
                 assert got == (w.lo, w.hi, w.ok, w.recon), f"run {k}: report at {c}: {got} != {w}"
         await clock_cycles(dut.clk, 50)
         assert int(dut.adc_pt_o.value) == 0 and int(dut.win_lo_o.value) == 0 and int(dut.win_ok_o.value) == 0

@@ -485,7 +485,7 @@ def main(argv=None) -> int:
                          "31 runs, ~1.5 min)")
     ap.add_argument("--no-om", action="store_true", help="skip the overmodulation runs (m = 1 ... 0xFFFF: 15 runs, ~45 s)")
     ap.add_argument("--no-foc", action="store_true",
-                    help="skip the closed FOC current-loop runs (PMSM, ADC, dq PI: 10 runs, ~1 min)")
+                    help="skip the closed FOC current-loop runs (PMSM, ADC, dq PI: 12 runs, ~15 s)")
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)

@@ -4,9 +4,12 @@
 
 Runs (``POINTS``, kind "foc" of tb/cocotb/demo/demo_runs.py; the loop: tb/cocotb/foc_loop.py): the 400 W 48 V
 servo PMSM (svpwm_model.pmsm) held at two speeds, 1000 rpm (m ~ 0.35 at rated current) and 3300 rpm
-(m ~ 0.95: the back-EMF takes most of the bus, the low sides' window at the valley, where the shunts are
-sampled, closes to a few hundred ns), each with dead time 0, 1 us and 1 us with the core's compensation
-(dtc_en_i, the signs from the sampled currents, no hysteresis); i_q 0 -> rated (1 ms) -> -rated; the steady
+(m ~ 0.95: the back-EMF takes most of the bus; the low sides' window at the valley, where the shunts are
+sampled, shrinks to about a microsecond and closes with a dead time), each with dead time 0, 1 us and 1 us
+with the core's compensation (dtc_en_i, the signs from the sampled currents, no hysteresis), and 1 us with
+compensation and the signs of the sampled current vector turned to the centre of the pulses the update
+produces (foc_loop's "advanced": the same measured currents, 2P later in angle); i_q 0 -> rated (1 ms) ->
+-rated; the steady
 window (one electrical revolution at 1000 rpm, two at 3300 rpm) at +rated current.  A load step (free
 shaft, rated load torque removed at 3 ms, 1 us + compensation).  The isign hysteresis band 1, 2, 5 % of rated
 current at the 1000 rpm, 1 us + compensation point (band 0: that run itself).
@@ -32,8 +35,9 @@ DT_1US = 48
 
 # the speeds: (tag, rpm, steady window start (s), electrical revolutions, -rated step (s), end (s))
 SPEEDS = (("n1000", 1000.0, 0.003, 1, 0.0185, 0.023), ("n3300", 3300.0, 0.003, 2, 0.0125, 0.017))
-CASES = (("dt0", 0, 0, "dead time 0"), ("dt1us", DT_1US, 0, "1 us, no compensation"),
-         ("dt1us_dtc", DT_1US, 1, "1 us + compensation"))
+CASES = (("dt0", 0, 0, "dead time 0", {}), ("dt1us", DT_1US, 0, "1 µs, no compensation", {}),
+         ("dt1us_dtc", DT_1US, 1, "1 µs + compensation", {}),
+         ("dt1us_dtc_adv", DT_1US, 1, "1 µs + compensation, signs at the pulses' centre", {"isign_from": "advanced"}))
 HYST = (0.01, 0.02, 0.05)
 HYST_AT = "n1000"
 
@@ -46,16 +50,16 @@ def _pt(name, rpm, steps, t_end, steady, dt, dtc, title, **kw) -> dict:
 def points() -> list[dict]:
     out = []
     for tag, rpm, t_ss, revs, t_neg, t_end in SPEEDS:
-        for case, dt, dtc, lab in CASES:
+        for case, dt, dtc, lab, kw in CASES:
             out.append(_pt(f"foc_{tag}_{case}", rpm, [[0, 0], [0.001, 1.0], [t_neg, -1.0]], t_end, [t_ss, revs],
-                           dt, dtc, f"{rpm:.0f} rpm, {lab}", group=tag, case=case))
+                           dt, dtc, f"{rpm:.0f} rpm, {lab}", group=tag, case=case, **kw))
     tag, rpm, t_ss, revs, t_neg, t_end = SPEEDS[0]
     for h in HYST:
         out.append(_pt(f"foc_{tag}_dt1us_dtc_h{int(round(h * 100)):02d}", rpm, [[0, 0], [0.001, 1.0]], t_neg,
-                       [t_ss, revs], DT_1US, 1, f"{rpm:.0f} rpm, 1 us + compensation, isign band {h:.0%}",
+                       [t_ss, revs], DT_1US, 1, f"{rpm:.0f} rpm, 1 µs + compensation, isign band {h:.0%}",
                        group="hyst", case=f"h{h}", hyst=h))
     out.append(_pt("foc_load_step", 1000.0, [[0, 0], [0.001, 1.0]], 0.010, None, DT_1US, 1,
-                   "1000 rpm, free shaft, rated load removed at 3 ms, 1 us + compensation", group="load",
+                   "1000 rpm, free shaft, rated load removed at 3 ms, 1 µs + compensation", group="load",
                    case="load", fixed_speed=False, load=[[0, 1.27], [0.003, 0.0]]))
     return out
 
@@ -79,7 +83,8 @@ def summary(results: list[dict]) -> dict:
                    i_thd_pct=100 * st["i_thd"] if st else None,
                    id_ripple_rms=st.get("id_ripple_rms"), iq_ripple_rms=st.get("iq_ripple_rms"),
                    iq_mean=st.get("iq_mean"), id_mean=st.get("id_mean"), v_pu_max=st.get("v_pu_max"),
-                   v_pu_mean=st.get("v_pu_mean"), lowside_min_clocks=st.get("lowside_window_min_clocks"),
+                   v_pu_mean=st.get("v_pu_mean"), pi_limited=st.get("pi_limited_periods"),
+                   window_periods=st.get("periods"), lowside_min_clocks=st.get("lowside_window_min_clocks"),
                    sat_periods=r.get("sat_periods"), isign_changes=r.get("isign_changes"), npz=r.get("npz"))
         if pt["group"] == "load":
             load = row
@@ -100,19 +105,21 @@ def summary(results: list[dict]) -> dict:
     hy += [dict(band_pct=100 * r["hyst"], i_thd_pct=r["i_thd_pct"], run=r["name"]) for r in hyst]
     verdict = []
     for tag, rpm, *_ in SPEEDS:
-        a, b = base.get(f"foc_{tag}_dt0"), base.get(f"foc_{tag}_dt1us_dtc")
-        if a and b and a["i_thd_pct"] is not None and b["i_thd_pct"] is not None:
-            d = b["i_thd_pct"] - a["i_thd_pct"]
-            verdict.append(dict(rpm=rpm, thd_dt0=a["i_thd_pct"], thd_dtc=b["i_thd_pct"], diff_pp=d,
-                                within_0p2pp=abs(d) <= 0.2))
+        for case in ("dt1us_dtc", "dt1us_dtc_adv"):
+            a, b = base.get(f"foc_{tag}_dt0"), base.get(f"foc_{tag}_{case}")
+            if a and b and a["i_thd_pct"] is not None and b["i_thd_pct"] is not None:
+                d = b["i_thd_pct"] - a["i_thd_pct"]
+                verdict.append(dict(rpm=rpm, case=case, title=b["title"], thd_dt0=a["i_thd_pct"],
+                                    thd_dtc=b["i_thd_pct"], diff_pp=d, within_0p2pp=abs(d) <= 0.2))
     return dict(rows=rows, hysteresis=hy, load=load, dtc_vs_dt0=verdict,
                 definitions="rise: 10-90 % of the step of the true i_q sampled at the valleys (linear "
                             "interpolation), from the period the new reference is first used; overshoot: beyond "
                             "the new reference in % of the step; ripple: rms of i_d, i_q (the motor's continuous "
                             "current in the rotor frame, PWM ripple included) over the steady window at +rated; "
                             "THD: phase a current to the 200th harmonic over whole electrical revolutions of that "
-                            "window; |v|: the PI's output / (Udc / sqrt3); low-side window: the shortest time a "
-                            "low side is on around the valley (the shunt sample) in that window.")
+                            "window; |v|: the PI's output / (Udc / sqrt3); PI limited: periods of the window in "
+                            "which the PI's output was held at the inscribed circle; low-side window: the shortest "
+                            "time a low side is on around the valley (the shunt sample) in that window.")
 
 
 def _f(x, fmt="{:.2f}"):
@@ -121,13 +128,15 @@ def _f(x, fmt="{:.2f}"):
 
 def table(sm: dict) -> list[str]:
     lines = ["| run | rise 0→+rated (µs) | overshoot (%) | rise +→−rated (µs) | overshoot (%) | i_d ripple (A rms) "
-             "| i_q ripple (A rms) | i_a THD (%) | max \\|v\\| (pu) | low-side window (clocks) | RTL == model |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| i_q ripple (A rms) | i_a THD (%) | max \\|v\\| (pu) | PI limited (periods) | low-side window (clocks) "
+             "| RTL == model |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sm["rows"]:
         s = r["steps"] + [dict(rise_us=None, overshoot_pct=None)] * (2 - len(r["steps"]))
         lines.append(f"| {r['title']} | {_f(s[0]['rise_us'], '{:.0f}')} | {_f(s[0]['overshoot_pct'])} | "
                      f"{_f(s[1]['rise_us'], '{:.0f}')} | {_f(s[1]['overshoot_pct'])} | {_f(r['id_ripple_rms'], '{:.3f}')} | "
                      f"{_f(r['iq_ripple_rms'], '{:.3f}')} | {_f(r['i_thd_pct'])} | {_f(r['v_pu_max'], '{:.3f}')} | "
+                     f"{_f(r['pi_limited'], '{:d}')} of {_f(r['window_periods'], '{:d}')} | "
                      f"{_f(r['lowside_min_clocks'], '{:d}')} | {'yes' if r['rtl_equals_model'] else 'NO'} |")
     return lines
 
@@ -141,7 +150,7 @@ def hyst_table(sm: dict) -> list[str]:
 def verdict(sm: dict) -> list[str]:
     out = []
     for v in sm["dtc_vs_dt0"]:
-        out.append(f"{v['rpm']:.0f} rpm: 1 µs + compensation {v['thd_dtc']:.2f} % vs dead time 0 {v['thd_dt0']:.2f} %: "
+        out.append(f"{v['title']}: i_a THD {v['thd_dtc']:.2f} % vs dead time 0 {v['thd_dt0']:.2f} %: "
                    f"{v['diff_pp']:+.2f} percentage points, {'within' if v['within_0p2pp'] else 'NOT within'} 0.2 pp")
     ld = sm.get("load")
     if ld:

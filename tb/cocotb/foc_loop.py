@@ -315,6 +315,7 @@ def analyse(res: dict, a: dict, pt: dict) -> dict:
                              id_mean=float(dq.real.mean()), iq_mean=float(dq.imag.mean()),
                              id_ripple_rms=float(dq.real.std()), iq_ripple_rms=float(dq.imag.std()),
                              v_pu_max=float(a["v_pu"][sel].max()), v_pu_mean=float(a["v_pu"][sel].mean()),
+                             pi_limited_periods=int(a["pi_sat"][sel].sum()), periods=int(sel.sum()),
                              lowside_window_min_clocks=int(min(per)) if per else None,
                              lowside_window_mean_min_clocks=float(np.mean(per)) if per else None)
     out["v_pu_max"] = float(a["v_pu"].max())

@@ -12,7 +12,8 @@ produces (foc_loop's "advanced": the same measured currents, 2P later in angle);
 -rated; the steady
 window (one electrical revolution at 1000 rpm, two at 3300 rpm) at +rated current.  A load step (free
 shaft, rated load torque removed at 3 ms, 1 us + compensation).  The isign hysteresis band 1, 2, 5 % of rated
-current at the 1000 rpm, 1 us + compensation point (band 0: that run itself).
+current at the 1000 rpm, 1 us + compensation point (band 0: that run itself), and bands 0 ... 5 % with
+white ADC noise of 1 % of rated current rms on every sample.
 
 ``summary(results)`` (the figures, from the runs' JSON), ``table(sm)`` (markdown), ``plots(out, sm)``
 (fig_foc_*.png), ``write_docs(sm)``: the generated section of docs/demo.md between the markers
@@ -40,6 +41,7 @@ CASES = (("dt0", 0, 0, "dead time 0", {}), ("dt1us", DT_1US, 0, "1 µs, no compe
          ("dt1us_dtc_adv", DT_1US, 1, "1 µs + compensation, signs at the pulses' centre", {"isign_from": "advanced"}))
 HYST = (0.01, 0.02, 0.05)
 HYST_AT = "n1000"
+NOISE_PU = 0.01          # the hysteresis runs with ADC noise: 1 % of rated current rms (10 codes)
 
 
 def _pt(name, rpm, steps, t_end, steady, dt, dtc, title, **kw) -> dict:
@@ -54,10 +56,14 @@ def points() -> list[dict]:
             out.append(_pt(f"foc_{tag}_{case}", rpm, [[0, 0], [0.001, 1.0], [t_neg, -1.0]], t_end, [t_ss, revs],
                            dt, dtc, f"{rpm:.0f} rpm, {lab}", group=tag, case=case, **kw))
     tag, rpm, t_ss, revs, t_neg, t_end = SPEEDS[0]
-    for h in HYST:
-        out.append(_pt(f"foc_{tag}_dt1us_dtc_h{int(round(h * 100)):02d}", rpm, [[0, 0], [0.001, 1.0]], t_neg,
-                       [t_ss, revs], DT_1US, 1, f"{rpm:.0f} rpm, 1 µs + compensation, isign band {h:.0%}",
-                       group="hyst", case=f"h{h}", hyst=h))
+    noise = NOISE_PU * 14.85 / (60 / 4096)                     # codes rms (Adc12 defaults, rated 14.85 A)
+    for nz in (0.0, noise):
+        for h in ((0.0,) + HYST) if nz else HYST:
+            tail = f"_h{int(round(h * 100)):02d}" + ("_noise" if nz else "")
+            out.append(_pt(f"foc_{tag}_dt1us_dtc{tail}", rpm, [[0, 0], [0.001, 1.0]], t_neg, [t_ss, revs], DT_1US,
+                           1, f"{rpm:.0f} rpm, 1 µs + compensation, isign band {h:.0%}"
+                           + (f", ADC noise {NOISE_PU:.0%} rms" if nz else ""),
+                           group="hyst", case=f"h{h}", hyst=h, noise=bool(nz), adc={"noise_lsb": nz} if nz else {}))
     out.append(_pt("foc_load_step", 1000.0, [[0, 0], [0.001, 1.0]], 0.010, None, DT_1US, 1,
                    "1000 rpm, free shaft, rated load removed at 3 ms, 1 µs + compensation", group="load",
                    case="load", fixed_speed=False, load=[[0, 1.27], [0.003, 0.0]]))
@@ -76,7 +82,7 @@ def summary(results: list[dict]) -> dict:
         m = r["metrics"]
         st = m.get("steady") or {}
         row = dict(name=pt["name"], title=pt["title"], group=pt["group"], case=pt["case"], rpm=pt["speed_rpm"],
-                   dt=pt["dt"], dtc=pt["dtc"], hyst=pt.get("hyst", 0.0), ok=r.get("ok"),
+                   dt=pt["dt"], dtc=pt["dtc"], hyst=pt.get("hyst", 0.0), noise=pt.get("noise", False), ok=r.get("ok"),
                    rtl_equals_model=r.get("rtl_equals_model"), n_periods=r["n_periods"], sim_wall_s=r["sim_wall_s"],
                    steps=[dict(frm=s["iq_from"], to=s["iq_to"], rise_us=None if s["rise_s"] is None else 1e6 * s["rise_s"],
                                overshoot_pct=s["overshoot_pct"], final_err_pct=s["final_err_pct"]) for s in m["steps"]],
@@ -102,7 +108,11 @@ def summary(results: list[dict]) -> dict:
     base = {r["name"]: r for r in rows}
     hy = [dict(band_pct=0.0, i_thd_pct=base[f"foc_{HYST_AT}_dt1us_dtc"]["i_thd_pct"], run=f"foc_{HYST_AT}_dt1us_dtc")] \
         if f"foc_{HYST_AT}_dt1us_dtc" in base else []
-    hy += [dict(band_pct=100 * r["hyst"], i_thd_pct=r["i_thd_pct"], run=r["name"]) for r in hyst]
+    noisy = {r["hyst"]: r for r in hyst if r["noise"]}
+    hy += [dict(band_pct=100 * r["hyst"], i_thd_pct=r["i_thd_pct"], run=r["name"]) for r in hyst if not r["noise"]]
+    for h in hy:
+        n = noisy.get(h["band_pct"] / 100)
+        h.update(i_thd_noise_pct=n["i_thd_pct"] if n else None, run_noise=n["name"] if n else None)
     verdict = []
     for tag, rpm, *_ in SPEEDS:
         for case in ("dt1us_dtc", "dt1us_dtc_adv"):
@@ -142,8 +152,10 @@ def table(sm: dict) -> list[str]:
 
 
 def hyst_table(sm: dict) -> list[str]:
-    lines = ["| isign band (% of rated) | i_a THD (%) |", "|---|---|"]
-    lines += [f"| {h['band_pct']:.0f} | {_f(h['i_thd_pct'])} |" for h in sm["hysteresis"]]
+    lines = [f"| isign band (% of rated) | i_a THD (%), no noise | i_a THD (%), ADC noise {NOISE_PU:.0%} of rated rms |",
+             "|---|---|---|"]
+    lines += [f"| {h['band_pct']:.0f} | {_f(h['i_thd_pct'])} | {_f(h.get('i_thd_noise_pct'))} |"
+              for h in sm["hysteresis"]]
     return lines
 
 

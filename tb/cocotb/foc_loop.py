@@ -164,10 +164,13 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
     log: dict[str, list] = {k: [] for k in keys}
     t_sim0, cpu0 = time.perf_counter(), time.process_time()
     t_n = fixed.START_DELAY
+    t_end = fixed.START_DELAY + 2 * P * n_per
     for n in range(n_per):
         s = sample_cycle(t_n, P, count, up)
         T = next_update(s, t_n, P, lead, upd)
         w = T - lead - 2                           # written at this clock's falling edge: on the port at T - L - 1
+        if w + 1 >= t_end:                         # feeds an update after the run
+            break
         await tb._to_cycle(w)
         await FallingEdge(d.clk)
         new = tb._rec_lines()
@@ -208,7 +211,6 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
                      ("rpm", mot.speed_rpm()), ("theta", u.theta), ("t_load", mot.t_load)):
             log[k].append(v)
         t_n += 2 * P
-    t_end = fixed.START_DELAY + 2 * P * n_per
     await tb._to_cycle(t_end)
     await FallingEdge(d.clk)
     t_sim, cpu = time.perf_counter() - t_sim0, time.process_time() - cpu0

@@ -308,7 +308,9 @@ def print_foc_run(r: dict) -> None:
     safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
     print(f"   {r['n_periods']} carrier periods ({r['cycles']:,} clocks) in {r['sim_wall_s']:.1f} s; RTL == model (every "
           f"edge, the words as sampled): {_pf(r['rtl_equals_model'])}; gate safety: {_pf(safe)}; ADC at adc_trig_o: "
-          f"{r.get('adc_trig_checked')} of {r['n_periods']} periods; isign_i changed {r['isign_changes']} times")
+          f"{r.get('adc_trig_checked')} of {r['n_periods']} periods; words on the ports "
+          f"{', '.join(map(str, r['writes_on_port_cycle_after_trigger']))} clocks after the trigger (deadline P - L - 1 "
+          f"= {r['period'] - r['sample_lead'] - 1}); isign_i changed {r['isign_changes']} times")
     for s in m["steps"]:
         rise = "—" if s["rise_s"] is None else f"{1e6 * s['rise_s']:.0f} us"
         print(f"   i_q {s['iq_from']:+.2f} -> {s['iq_to']:+.2f} A: rise (10-90 %) {rise}, overshoot "

@@ -5,7 +5,8 @@
 Two modes (docs/demo.md): ``--quick`` (`make demo`, about 2 min, output in build/demo/) runs Minas' two
 points, prints the seeds' tables (Minas Table I, AVR495 Table 4-3) beside the core's, their spectra, and the
 dead-time compensation runs at both points; without it (`make report`, output in build/report/) every run
-below: also the m sweep, the volt-second carry and overmodulation studies and the AVR495 speed loop. Both
+below: also the m sweep, the volt-second carry and overmodulation studies, the AVR495 speed loop and the
+closed FOC current loop with a PMSM (scripts/foc_report.py, issue 30 items 3 and 4). Both
 run every check below at full strength; the quick mode only runs fewer runs.
 
 Runs the core (rtl/*.sv on tb/cocotb/svpwm_core/tb_svpwm_core.sv) in Verilator through cocotb
@@ -62,6 +63,7 @@ for _p in (REPO / "model", REPO / "tb" / "cocotb"):
     if str(_p) not in sys.path:
         sys.path.insert(0, str(_p))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import foc_report  # noqa: E402  (the closed FOC current loop's runs, table and plots)
 
 F_CLK = 48e6
 P_VERMA = 1536          # 48 MHz / (2 * 1536) = 15.625 kHz
@@ -115,7 +117,8 @@ QUICK_DTC_GROUPS = ("fig9", "fig10")
 QUICK_LEFT = ("the m sweep at 50 Hz (m = 0.1 ... 1.0, 2 revolutions each)",
               "the volt-second carry study (m = 0.90 ... 1.00, dead time 0 / 1 us carry off / on)",
               "the six-step overmodulation law (m = 1 ... 0xFFFF)",
-              "the AVR495 +700 -> -700 rpm speed steps with the RTL in the loop (2 s of motor time)")
+              "the AVR495 +700 -> -700 rpm speed steps with the RTL in the loop (2 s of motor time)",
+              "the closed FOC current loop with a PMSM (16 runs: i_q steps, dead time, isign hysteresis, load step)")
 
 
 # Volt-second carry of the minimum-pulse rule (issue 15 item 5(b)): m = 0.90 ... 1.00 at 50 Hz, 2 revolutions
@@ -293,8 +296,39 @@ def print_study_run(r: dict) -> None:
         print(f"   FAILED: {f.splitlines()[0]}")
 
 
+def print_foc_run(r: dict) -> None:
+    """One closed FOC current-loop run (foc_report.POINTS): checks, step figures, steady-window figures."""
+    pt = r["point"]
+    print()
+    print(f"== FOC current loop, {pt['title']} (PMSM, 12-bit ADC at adc_trig_o, dq PI; RTL in the loop)")
+    if r.get("missing"):
+        print("   no results: the simulation did not complete this run (see the log above)")
+        return
+    h, m = r["harness"], r["metrics"]
+    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    print(f"   {r['n_periods']} carrier periods ({r['cycles']:,} clocks) in {r['sim_wall_s']:.1f} s; RTL == model (every "
+          f"edge, the words as sampled): {_pf(r['rtl_equals_model'])}; gate safety: {_pf(safe)}; ADC at adc_trig_o: "
+          f"{r.get('adc_trig_checked')} of {r['n_periods']} periods; words on the ports "
+          f"{', '.join(map(str, r['writes_on_port_cycle_after_trigger']))} clocks after the trigger (deadline P - L - 1 "
+          f"= {r['period'] - r['sample_lead'] - 1}); isign_i changed {r['isign_changes']} times")
+    for s in m["steps"]:
+        rise = "—" if s["rise_s"] is None else f"{1e6 * s['rise_s']:.0f} us"
+        print(f"   i_q {s['iq_from']:+.2f} -> {s['iq_to']:+.2f} A: rise (10-90 %) {rise}, overshoot "
+              f"{s['overshoot_pct']:.2f} %, final error {s['final_err_pct']:+.2f} %")
+    st = m.get("steady")
+    if st:
+        print(f"   steady window ({st['n_fund']} electrical revolution(s) at {st['f_e_hz']:.1f} Hz): i_a THD "
+              f"{100 * st['i_thd']:.2f} %, i_d / i_q ripple {st['id_ripple_rms']:.3f} / {st['iq_ripple_rms']:.3f} A rms, "
+              f"|v| max {st['v_pu_max']:.3f}, low-side window at the valley >= {st['lowside_window_min_clocks']} clocks")
+    for f in r.get("failures") or []:
+        print(f"   FAILED: {f.splitlines()[0]}")
+
+
 def print_table(r: dict) -> None:
     pt = r["point"]
+    if pt.get("kind") == "foc":
+        print_foc_run(r)
+        return
     if pt.get("kind") == "dtc":
         print_dtc_run(r)
         return
@@ -437,7 +471,7 @@ def main(argv=None) -> int:
     ap.add_argument("--sim", choices=("verilator", "icarus"), default="verilator",
                     help="simulator (default verilator; Icarus is ~20x slower: minutes for the 5.1 Hz point)")
     ap.add_argument("--only", metavar="NAME", action="append",
-                    choices=[p["name"] for p in POINTS + SWEEP + DTC + VSC + om_points()],
+                    choices=[p["name"] for p in POINTS + SWEEP + DTC + VSC + om_points() + foc_report.POINTS],
                     help="run only this operating point, sweep point, dead-time compensation, volt-second carry "
                          "(vsc_m<100 m>_{dt0,off,on}) or overmodulation (om<0|1>_m<word>) run (repeatable)")
     ap.add_argument("--quick", action="store_true",
@@ -453,14 +487,16 @@ def main(argv=None) -> int:
                     help="skip the volt-second carry runs (m = 0.90 ... 1.00, dead time 0 / 1 us carry off / on: "
                          "31 runs, ~1.5 min)")
     ap.add_argument("--no-om", action="store_true", help="skip the overmodulation runs (m = 1 ... 0xFFFF: 15 runs, ~45 s)")
+    ap.add_argument("--no-foc", action="store_true",
+                    help="skip the closed FOC current-loop runs (PMSM, ADC, dq PI: 16 runs, ~15 s)")
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)
     if args.out is None:
         args.out = DEMO_DIR if args.quick else REPORT_DIR
     if args.quick:           # the same runs as below, fewer of them: no sweep, carry, overmodulation, speed loop
-        args.no_sweep = args.no_vsc = args.no_om = args.no_speed = True
-    every = POINTS + SWEEP + DTC + VSC + om_points()
+        args.no_sweep = args.no_vsc = args.no_om = args.no_speed = args.no_foc = True
+    every = POINTS + SWEEP + DTC + VSC + om_points() + foc_report.POINTS
     points = [p for p in every if p["name"] in args.only] if args.only else list(POINTS)
     alias: dict[str, str] = {}
     if not args.only and not args.no_sweep:
@@ -473,6 +509,8 @@ def main(argv=None) -> int:
         points += [p for p in DTC if not args.quick or p["group"] in QUICK_DTC_GROUPS]
     if not args.only and not args.no_speed:
         points.append(dict(SPEED, t_end_s=args.speed_time))
+    if not args.only and not args.no_foc:
+        points += foc_report.POINTS
     try:
         check_env(args.sim)
     except SetupError as e:
@@ -542,6 +580,14 @@ def main(argv=None) -> int:
             print(title)
             for line in table(sm) + verdict(sm):
                 print("  " + line)
+    foc_sm = None
+    if any(r["point"].get("kind") == "foc" and not r.get("missing") for r in results):
+        foc_sm = foc_report.summary(results)
+        summary["foc_current_loop"] = foc_sm
+        print()
+        print("closed FOC current loop (400 W 48 V PMSM, 12-bit ADC at the valley trigger, dq PI, peak update):")
+        for line in foc_report.table(foc_sm) + [""] + foc_report.hyst_table(foc_sm) + [""] + foc_report.verdict(foc_sm):
+            print("  " + line)
     summary["reused_runs"] = alias
     out = args.out.resolve() / "demo.json"
     out.write_text(json.dumps(summary, indent=2, default=float) + "\n")
@@ -564,6 +610,8 @@ def main(argv=None) -> int:
                       vsc=summary.get("volt_second_carry"), om=summary.get("overmodulation"),
                       made_by="make demo" if args.quick else "make report")
         report = args.out.resolve() / "report.md"
+        if foc_sm:
+            foc_report.append_report(args.out.resolve(), foc_sm, foc_report.plots(args.out.resolve(), foc_sm))
         print("\nfidelity (line voltage, dead time off):")
         for line in rep.fidelity_table(m):
             print("  " + line)

@@ -18,7 +18,8 @@ Environment (set by the scripts):
 
 A point with ``kind`` "speed_loop" is the closed speed loop (run_speed_loop); ``kind`` "dtc" a dead-time run
 with the motor model in the loop driving isign_i (run_dtc_point: ``dt``, ``dtc``, ``t_load``, ``revs``,
-``warmup_revs``); any other point the constant-input run below.
+``warmup_revs``); ``kind`` "foc" the closed FOC current loop with a PMSM (run_foc_point, tb/cocotb/foc_loop.py:
+its keys are run_foc's); any other point the constant-input run below.
 
 Per point the core runs on tb_svpwm_core.sv with constant inputs; the test asserts RTL == model on every
 edge (CoreTB.compare) and the in-RTL safety checker, and measures: the line-voltage (a - b) fundamental
@@ -525,9 +526,36 @@ async def run_dtc_point(dut, pt: dict) -> None:
     assert not fails, "\n".join(fails)
 
 
+async def run_foc_point(dut, pt: dict) -> None:
+    """Closed FOC current loop with the RTL in it (issue 30 item 3): foc_loop.run_foc (the PMSM of
+    svpwm_model.pmsm on the RTL's gate edges, a 12-bit ADC at the core's trigger, a dq PI, theta / v_d / v_q /
+    isign_i written before the core's sample clock; RTL == model on every edge, the pin checker, the leg
+    check, the ADC trigger instant), then foc_loop.analyse: step responses, dq ripple, phase-current THD, the
+    low-side window at the valley. Writes <name>.json and <name>.npz (the per-period log and the motor's
+    current trace for the report's plots)."""
+    from foc_loop import analyse, run_foc
+
+    out_dir = Path(os.environ.get("SVPWM_DEMO_OUT", "."))
+    out_dir.mkdir(parents=True, exist_ok=True)
+    res, a = await run_foc(dut, pt)
+    res["metrics"] = analyse(res, a, pt)
+    npz = out_dir / f"{pt['name']}.npz"
+    np.savez_compressed(npz, **a)
+    res["npz"] = str(npz)
+    res["ok"] = not res["failures"]
+    (out_dir / f"{pt['name']}.json").write_text(json.dumps(res, indent=2, default=float) + "\n")
+    st = res["metrics"].get("steady") or {}
+    dut._log.info("%s: %d periods in %.1f s, RTL == model: %s, i THD %s %%", pt["name"], res["n_periods"],
+                  res["sim_wall_s"], res["rtl_equals_model"],
+                  f"{100 * st['i_thd']:.2f}" if st else "-")
+    assert not res["failures"], "\n".join(res["failures"])
+
+
 def _make_test(pt: dict):
     async def point_test(dut):
-        if pt.get("kind") == "speed_loop":
+        if pt.get("kind") == "foc":
+            await run_foc_point(dut, pt)
+        elif pt.get("kind") == "speed_loop":
             await run_speed_loop(dut, pt)
         elif pt.get("kind") == "dtc":
             await run_dtc_point(dut, pt)

@@ -34,6 +34,7 @@ import numpy as np
 from cocotb.triggers import FallingEdge, RisingEdge
 
 from clocks import clock_cycles
+from svpwm_model import adc as ADC
 from svpwm_model import fixed, foc
 from svpwm_model import pmsm as PM
 from svpwm_model.analysis import check_legs
@@ -104,7 +105,12 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
     hyst [0] (isign band / rated current), isign_from ["sample": the sampled currents; "advanced": the sampled
     current vector turned to the pulses' centre], sample [[0, True]] (count, up), upd ["peak"|"valley"],
     adc ({Adc12 fields}), delay_periods [1.5] (PI tuning), decouple [True], pi_sign [1], theta_dir [1]
-    (-1: the angle written mirrored: a broken convention, for the check that the tests can fail)."""
+    (-1: the angle written mirrored: a broken convention, for the check that the tests can fail),
+    shunts [None] (low-side shunts, feature adc: {"win_min": clocks}: the ADC starts at trigger point 0, set
+    to the sample's count and direction, one clock after the carrier is there (adc_pt_o); a phase whose
+    low-side window the core reports shorter than win_min (win_ok_o) reads no current, the phase the core
+    names (win_recon_o) is taken as minus the other two when they are readable, and with two phases
+    unreadable the last measured currents are kept)."""
     t_test = time.perf_counter()
     d = dut
     P, dt, dtc = int(pt.get("period", 1536)), int(pt.get("dt", 0)), int(bool(pt.get("dtc")))
@@ -127,9 +133,15 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
     load = pt.get("load", [[0.0, 0.0]])
     iq_steps = [[t, x * mp.i_rated] for t, x in pt["iq_steps"]]
     id_ref = float(pt.get("id_ref", 0.0)) * mp.i_rated
-    trig_word = 1 if (count, up) == (0, True) else 2 if count == P else 0
+    shunts = pt.get("shunts")
+    trig_word = 0 if shunts else 1 if (count, up) == (0, True) else 2 if count == P else 0
+    # with shunts the sample is the point's pulse, one clock after the carrier is at (count, up)
+    s_off = 1 if shunts else 0
 
     base = Inputs(mode=fixed.MODE_DQ, period=P, dt=dt, dtc=dtc, upd=upd, vsc=1)
+    if shunts:
+        base = replace(base, adc_pt=(ADC.Point(True, not up, count), ADC.Point()),
+                       win_min=int(shunts["win_min"]))
     await tb.reset(base)
     tb.model.idle(tb.idle_cycles)
     tb.set_inputs(base)
@@ -143,13 +155,16 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
         while True:
             await RisingEdge(d.adc_trig_o)
             trig.append(tb._cycle())
+            if shunts:
+                assert int(d.adc_pt_o.value) == 1, f"adc_trig_o without point 0 at cycle {tb._cycle()}"
 
     task_trig = cocotb.start_soon(watch_trig())
     await FallingEdge(d.clk)
 
     # the motor starts at the first update (the gates switch from the clock after it); before, all gates
     # are off and the model has no open-phase state (pmsm.py): no current flows at these speeds
-    t_first = next_update(sample_cycle(fixed.START_DELAY, P, count, up), fixed.START_DELAY, P, lead, upd)
+    t_first = next_update(sample_cycle(fixed.START_DELAY, P, count, up) + s_off, fixed.START_DELAY, P, lead,
+                          upd)
     mot = PM.InverterPmsm(mp, gates=True, fixed_speed=fixed_speed, t_load=ref_at(load, 0.0),
                           h_max=float(pt.get("h_max", 5e-6)))
     th0 = math.radians(float(pt.get("theta0_deg", 0.0)))
@@ -160,13 +175,14 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
     pushed = -1                                   # the last edge cycle given to the motor
     writes: list[tuple[int, Inputs]] = []         # (first cycle on the ports, inputs)
     keys = ("t", "iq_ref", "id_ref", "id", "iq", "id_meas", "iq_meas", "vd", "vq", "v_pu", "pi_sat", "isign",
-            "rpm", "theta", "t_load")
+            "rpm", "theta", "t_load", "win_ok", "win_recon", "i_source")
+    i_prev = (0.0, 0.0, 0.0)
     log: dict[str, list] = {k: [] for k in keys}
     t_sim0, cpu0 = time.perf_counter(), time.process_time()
     t_n = fixed.START_DELAY
     t_end = fixed.START_DELAY + 2 * P * n_per
     for n in range(n_per):
-        s = sample_cycle(t_n, P, count, up)
+        s = sample_cycle(t_n, P, count, up) + s_off
         T = next_update(s, t_n, P, lead, upd)
         w = T - lead - 2                           # written at this clock's falling edge: on the port at T - L - 1
         if w + 1 >= t_end:                         # feeds an update after the run
@@ -186,6 +202,20 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
         i_true = complex(mot.i_d, mot.i_q) if s >= mot.t else 0j     # the motor is at s (or not started)
         i_abc = mot.phase_currents() if s >= mot.t else (0.0, 0.0, 0.0)
         i_m = adc.amps(adc.convert(i_abc))
+        w_ok, w_rc, src = 7, 0, 0                  # src: 0 all read, 1 one reconstructed, 2 held
+        if shunts:
+            # the report of the values active at s (no update between s and w: T - L - 2 >= s)
+            w_ok, w_rc = int(d.win_ok_o.value), int(d.win_recon_o.value)
+            others = [ph for ph in range(3) if ph != w_rc]
+            if pt.get("no_recon"):                 # (broken on purpose: unreadable phases read 0 A)
+                i_m, src = tuple(x if w_ok >> ph & 1 else 0.0 for ph, x in enumerate(i_m)), 0
+            elif all(w_ok >> ph & 1 for ph in others):
+                i_m = ADC.reconstruct(tuple(x if w_ok >> ph & 1 else 0.0 for ph, x in enumerate(i_m)),
+                                      ADC.Window((0, 0, 0), (0, 0, 0), w_ok, w_rc))
+                src = int(not w_ok >> w_rc & 1)
+            else:
+                i_m, src = i_prev, 2
+        i_prev = i_m
         i_dq = foc.park(foc.clarke(i_m[0], i_m[1]), th_s)
         w_e = mot.w_e()
         iq_r = ref_at(iq_steps, t_s)
@@ -208,7 +238,8 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
         for k, v in (("t", t_s), ("iq_ref", iq_r), ("id_ref", id_ref), ("id", i_true.real), ("iq", i_true.imag),
                      ("id_meas", i_dq.real), ("iq_meas", i_dq.imag), ("vd", vd), ("vq", vq),
                      ("v_pu", math.hypot(vd, vq) / v_max), ("pi_sat", pi.sat), ("isign", u.isign),
-                     ("rpm", mot.speed_rpm()), ("theta", u.theta), ("t_load", mot.t_load)):
+                     ("rpm", mot.speed_rpm()), ("theta", u.theta), ("t_load", mot.t_load), ("win_ok", w_ok),
+                     ("win_recon", w_rc), ("i_source", src)):
             log[k].append(v)
         t_n += 2 * P
     await tb._to_cycle(t_end)
@@ -260,15 +291,26 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
                        short_pulse=len(legs.short_pulse))
     if not legs.ok:
         fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
-    # the ADC sample instant is the core's trigger (checked where the core has one there: valley / peak)
-    if trig_word:
+    # the ADC sample instant is the core's trigger (checked where the core has one there: valley / peak, or
+    # trigger point 0 with shunts)
+    if trig_word or shunts:
         tset = set(trig)
-        miss = [sample_cycle(vals[n], P, count, up) for n in range(n_per)
-                if sample_cycle(vals[n], P, count, up) not in tset]
-        res["adc_trig_checked"] = n_per - len(miss)
+        # (a trigger point fires from the first update on: the samples before it are not checked)
+        first = exp.updates[0].load if (shunts and exp.updates) else 0
+        smp = [sample_cycle(vals[n], P, count, up) + s_off for n in range(n_per)]
+        smp = [c for c in smp if c >= first]
+        miss = [c for c in smp if c not in tset]
+        res["adc_trig_checked"] = len(smp) - len(miss)
+        res["adc_trig_before_first_update"] = n_per - len(smp)
         if miss:
             fails.append(f"ADC sample not at adc_trig_o: cycles {miss[:5]} (adc_trig_o at {trig[:5]} ...)")
     res["sat_periods"] = int(sum(exp.sat))
+    if shunts:       # per phase: periods unreadable; periods with one phase reconstructed, with all held
+        ok = log["win_ok"]
+        res["shunts"] = dict(win_min=int(shunts["win_min"]),
+                             unreadable=[sum(1 for x in ok if not x >> ph & 1) for ph in range(3)],
+                             reconstructed=sum(1 for x in log["i_source"] if x == 1),
+                             held=sum(1 for x in log["i_source"] if x == 2), periods=len(ok))
     res["writes_on_port_cycle_after_trigger"] = sorted({c - sample_cycle(vals[n], P, count, up)
                                                          for n, (c, _) in enumerate(writes)})
     arrays = {k: np.asarray(v) for k, v in log.items()}

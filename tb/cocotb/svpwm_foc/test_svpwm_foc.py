@@ -13,6 +13,9 @@ i_q reaches 90 % of the step within RISE_MAX periods, overshoot <= OVERSHOOT_MAX
 last periods within 3 % of rated, i_d within 5 % of rated.
 
 Both simulators: 0 -> rated -> -rated; Icarus in 52 carrier periods (steps at 4 and 26), Verilator in 140 (8, 74).
+foc_shunts: low-side shunts at 3300 rpm (near m = 1), the ADC at the core's trigger point 0, the phases to read
+and to reconstruct from its window report (feature adc); SVPWM_FOC_BREAK=recon (unreadable phases read as
+0 A) fails its ripple check.
 """
 from __future__ import annotations
 
@@ -69,6 +72,41 @@ async def foc_iq_step(dut):
         assert np.max(np.abs(id_[tail])) <= 0.05 * i_r, f"step {k}: |i_d| up to {np.max(np.abs(id_[tail])):.3f} A"
     dut._log.info("%d periods in %.1f s (%.0f cycles/s), %d gate edges, RTL == model", res["n_periods"],
                   res["sim_wall_s"], res["cycles_per_s"], res["gate_edges"])
+
+
+def point_shunts() -> dict:
+    """3300 rpm (|v| near the inscribed circle: a low-side window closes every few periods), low-side shunts:
+    the ADC at trigger point 0 (the valley), the window report choosing the phases (foc_loop.run_foc)."""
+    n, k1 = (52, 4) if ICARUS else (140, 8)
+    pt = dict(name="foc_shunts", speed_rpm=3300.0, dt=48, dtc=1, hyst=0.02, iq_steps=[[0.0, 0.0], [k1 * TS, 1.0]],
+              t_end_s=n * TS, shunts={"win_min": 96})
+    if os.environ.get("SVPWM_FOC_BREAK", "") == "recon":
+        pt["no_recon"] = True
+    return pt
+
+
+@cocotb.test()
+async def foc_shunts(dut):
+    """Low-side shunts near m = 1: trigger point 0 on every period after the first update, phases unreadable
+    and reconstructed from the core's window report, RTL == model, and i_q at +rated with a small ripple."""
+    from foc_loop import analyse, run_foc
+
+    pt = point_shunts()
+    res, a = await run_foc(dut, pt)
+    assert not res["failures"], "\n".join(res["failures"])
+    assert res["rtl_equals_model"] and res["adc_trig_checked"] == res["n_periods"] - res["adc_trig_before_first_update"]
+    sh = res["shunts"]
+    dut._log.info("shunts: %s", sh)
+    analyse(res, a, pt)
+    i_r = res["motor"]["i_rated"]
+    t, iq = a["t"], a["iq"]
+    tail = t >= t[-1] - 10 * TS
+    err = float(np.mean(iq[tail]) - i_r)
+    ripple = float(np.std(iq[tail]))
+    dut._log.info("i_q over the last 10 periods: mean error %+.3f A, std %.3f A", err, ripple)
+    assert abs(err) <= 0.03 * i_r, f"mean i_q error {err:+.3f} A over the last 10 periods"
+    assert ripple <= 0.02 * i_r, f"i_q varies by {ripple:.3f} A rms over the last 10 periods (the samples)"
+    assert sum(sh["unreadable"]) > 0 and sh["reconstructed"] > 0, f"no phase unreadable / reconstructed: {sh}"
 
 
 def test_svpwm_foc(sim):

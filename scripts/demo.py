@@ -118,7 +118,7 @@ QUICK_LEFT = ("the m sweep at 50 Hz (m = 0.1 ... 1.0, 2 revolutions each)",
               "the volt-second carry study (m = 0.90 ... 1.00, dead time 0 / 1 us carry off / on)",
               "the six-step overmodulation law (m = 1 ... 0xFFFF)",
               "the AVR495 +700 -> -700 rpm speed steps with the RTL in the loop (2 s of motor time)",
-              "the closed FOC current loop with a PMSM (16 runs: i_q steps, dead time, isign hysteresis, load step)")
+              "the closed FOC current loop with a PMSM (18 runs: i_q steps, dead time, low-side shunts, isign hysteresis, load step)")
 
 
 # Volt-second carry of the minimum-pulse rule (issue 15 item 5(b)): m = 0.90 ... 1.00 at 50 Hz, 2 revolutions
@@ -488,7 +488,7 @@ def main(argv=None) -> int:
                          "31 runs, ~1.5 min)")
     ap.add_argument("--no-om", action="store_true", help="skip the overmodulation runs (m = 1 ... 0xFFFF: 15 runs, ~45 s)")
     ap.add_argument("--no-foc", action="store_true",
-                    help="skip the closed FOC current-loop runs (PMSM, ADC, dq PI: 16 runs, ~15 s)")
+                    help="skip the closed FOC current-loop runs (PMSM, ADC, dq PI: 18 runs, ~20 s)")
     ap.add_argument("--speed-time", type=float, default=SPEED["t_end_s"], help="motor time of the speed loop (s)")
     ap.add_argument("--no-report", action="store_true", help="skip the analysis, plots and report")
     args = ap.parse_args(argv)

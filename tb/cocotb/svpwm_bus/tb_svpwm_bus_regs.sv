@@ -12,7 +12,7 @@ module tb_svpwm_bus_regs #(
   parameter int         AddrWidth = 8,
   parameter int         GatePol   = 0,      // int here: -G / -P pass 32-bit values
   parameter int         ClkHz     = 0,      // CLK_HZ value
-  parameter int         Features  = 32'h3fff, // the build (svpwm_pkg::Cfg*; int: -G / -P)
+  parameter int         Features  = 32'h7fff, // the build (svpwm_pkg::Cfg*; int: -G / -P)
   parameter int         Trim      = 0       // 1: the board cut of the register block
 ) (
   input  wire logic                 rst_n,

@@ -3,7 +3,7 @@
 // svpwm_regs: bus-agnostic register block of the svpwm register map (docs/registers.md): one access
 // per clock with req_i; RW fields drive the svpwm_core inputs, RO fields read the core's outputs.
 // Parameters:
-//   AddrWidth - byte address width (>= 7); every address bit is decoded, addr_i[1:0] ignored
+//   AddrWidth - byte address width (>= 8); every address bit is decoded, addr_i[1:0] ignored
 //   AddrEarly - 0: addr_i is decoded in the clock of the request (any bus adapter); 1: addr_i is
 //             decoded every clock into a registered one-hot register select, so that the write
 //             enables and the read multiplexer start at flip-flops (shorter paths); addr_i must
@@ -19,7 +19,7 @@
 //             model/svpwm_model/config.py; the core's Features): the registers and fields of a
 //             feature not built (rdl/svpwm.rdl `features`, docs/registers.md) read 0, ignore writes
 //             and have no storage (their outputs are constant 0, their live inputs unread);
-//             bits 13:0 read back in FEATURES.features (default svpwm_pkg::CfgFull)
+//             bits 14:0 read back in FEATURES.features (default svpwm_pkg::CfgFull)
 //   Trim - 1: the iCEstick's board cut: the registers and fields marked `trimmed` in rdl/svpwm.rdl
 //             (docs/registers.md, column trim) are not built either; value of
 //             FEATURES.trim (RDL default 0)
@@ -93,15 +93,30 @@ module svpwm_regs #(
   input  logic [15:0]  cmp_b_i,                // CMP_B.cmp: RO (live) (not if Trim)
   input  logic [15:0]  cmp_c_i,                // CMP_C.cmp: RO (live) (not if Trim)
   output logic         dtc_en_o,               // DTC.en: RW (needs dtc)
-  output logic [2:0]   dtc_isign_o             // DTC.isign: RW (needs dtc)
+  output logic [2:0]   dtc_isign_o,            // DTC.isign: RW (needs dtc)
+  output logic [15:0]  adc_pt0_cnt_o,          // ADC_PT0.cnt: RW (needs adc)
+  output logic         adc_pt0_dn_o,           // ADC_PT0.dn: RW (needs adc)
+  output logic         adc_pt0_en_o,           // ADC_PT0.en: RW (needs adc)
+  output logic [15:0]  adc_pt1_cnt_o,          // ADC_PT1.cnt: RW (needs adc)
+  output logic         adc_pt1_dn_o,           // ADC_PT1.dn: RW (needs adc)
+  output logic         adc_pt1_en_o,           // ADC_PT1.en: RW (needs adc)
+  output logic [16:0]  win_min_o,              // WIN_MIN.win_min: RW (needs adc)
+  input  logic [16:0]  win_lo_a_i,             // WIN_LO_A.lo: RO (live) (needs adc)
+  input  logic [16:0]  win_lo_b_i,             // WIN_LO_B.lo: RO (live) (needs adc)
+  input  logic [16:0]  win_lo_c_i,             // WIN_LO_C.lo: RO (live) (needs adc)
+  input  logic [16:0]  win_hi_a_i,             // WIN_HI_A.hi: RO (live) (needs adc)
+  input  logic [16:0]  win_hi_b_i,             // WIN_HI_B.hi: RO (live) (needs adc)
+  input  logic [16:0]  win_hi_c_i,             // WIN_HI_C.hi: RO (live) (needs adc)
+  input  logic [2:0]   win_status_ok_i,        // WIN_STATUS.ok: RO (live) (needs adc)
+  input  logic [1:0]   win_status_recon_i      // WIN_STATUS.recon: RO (live) (needs adc)
 );
 
-  if (AddrWidth < 7 || AddrWidth > 32) begin : gen_bad_addr_width
+  if (AddrWidth < 8 || AddrWidth > 32) begin : gen_bad_addr_width
 `ifdef __ICARUS__  // Icarus 11 has no elaboration-time tasks: at time 0
-    initial $fatal(1, "svpwm_regs: AddrWidth must be 7..32, got %0d (%m)", AddrWidth);
+    initial $fatal(1, "svpwm_regs: AddrWidth must be 8..32, got %0d (%m)", AddrWidth);
 `else              // at elaboration (Yosys formats $display only, then stops at $error)
-    initial $display("svpwm_regs: AddrWidth must be 7..32, got %0d (%m)", AddrWidth);
-    $error("svpwm_regs: AddrWidth must be 7..32, got %0d", AddrWidth);
+    initial $display("svpwm_regs: AddrWidth must be 8..32, got %0d (%m)", AddrWidth);
+    $error("svpwm_regs: AddrWidth must be 8..32, got %0d", AddrWidth);
 `endif
   end
   if (ClkHz < 0) begin : gen_bad_clk_hz
@@ -139,6 +154,16 @@ module svpwm_regs #(
   localparam logic [AddrWidth-3:0] IdxClkHz = (AddrWidth-2)'(22);
   localparam logic [AddrWidth-3:0] IdxFeatures = (AddrWidth-2)'(23);
   localparam logic [AddrWidth-3:0] IdxDtc = (AddrWidth-2)'(24);
+  localparam logic [AddrWidth-3:0] IdxAdcPt0 = (AddrWidth-2)'(25);
+  localparam logic [AddrWidth-3:0] IdxAdcPt1 = (AddrWidth-2)'(26);
+  localparam logic [AddrWidth-3:0] IdxWinMin = (AddrWidth-2)'(27);
+  localparam logic [AddrWidth-3:0] IdxWinLoA = (AddrWidth-2)'(28);
+  localparam logic [AddrWidth-3:0] IdxWinLoB = (AddrWidth-2)'(29);
+  localparam logic [AddrWidth-3:0] IdxWinLoC = (AddrWidth-2)'(30);
+  localparam logic [AddrWidth-3:0] IdxWinHiA = (AddrWidth-2)'(31);
+  localparam logic [AddrWidth-3:0] IdxWinHiB = (AddrWidth-2)'(32);
+  localparam logic [AddrWidth-3:0] IdxWinHiC = (AddrWidth-2)'(33);
+  localparam logic [AddrWidth-3:0] IdxWinStatus = (AddrWidth-2)'(34);
 
   // bit of each register in the one-hot register select
   localparam int SelId = 0;
@@ -166,7 +191,17 @@ module svpwm_regs #(
   localparam int SelClkHz = 22;
   localparam int SelFeatures = 23;
   localparam int SelDtc = 24;
-  localparam int NumRegs = 25;
+  localparam int SelAdcPt0 = 25;
+  localparam int SelAdcPt1 = 26;
+  localparam int SelWinMin = 27;
+  localparam int SelWinLoA = 28;
+  localparam int SelWinLoB = 29;
+  localparam int SelWinLoC = 30;
+  localparam int SelWinHiA = 31;
+  localparam int SelWinHiB = 32;
+  localparam int SelWinHiC = 33;
+  localparam int SelWinStatus = 34;
+  localparam int NumRegs = 35;
 
   logic [AddrWidth-3:0] idx;
   logic                 wr, rd;
@@ -204,6 +239,16 @@ module svpwm_regs #(
       IdxClkHz: sel_d[SelClkHz] = 1'b1;
       IdxFeatures: sel_d[SelFeatures] = 1'b1;
       IdxDtc: sel_d[SelDtc] = 1'b1;
+      IdxAdcPt0: sel_d[SelAdcPt0] = 1'b1;
+      IdxAdcPt1: sel_d[SelAdcPt1] = 1'b1;
+      IdxWinMin: sel_d[SelWinMin] = 1'b1;
+      IdxWinLoA: sel_d[SelWinLoA] = 1'b1;
+      IdxWinLoB: sel_d[SelWinLoB] = 1'b1;
+      IdxWinLoC: sel_d[SelWinLoC] = 1'b1;
+      IdxWinHiA: sel_d[SelWinHiA] = 1'b1;
+      IdxWinHiB: sel_d[SelWinHiB] = 1'b1;
+      IdxWinHiC: sel_d[SelWinHiC] = 1'b1;
+      IdxWinStatus: sel_d[SelWinStatus] = 1'b1;
       default: ;  // no register here: no select bit
     endcase
   end
@@ -683,11 +728,87 @@ module svpwm_regs #(
     assign dtc_isign_q = 3'h0;
   end
 
+  // fields of the builds with adc: no storage in the others (constant 0)
+  logic [15:0]  adc_pt0_cnt_q;
+  logic         adc_pt0_dn_q;
+  logic         adc_pt0_en_q;
+  logic [15:0]  adc_pt1_cnt_q;
+  logic         adc_pt1_dn_q;
+  logic         adc_pt1_en_q;
+  logic [16:0]  win_min_q;
+  if (Features[svpwm_pkg::FeatAdc]) begin : gen_adc
+    logic [15:0]  adc_pt0_cnt_d, adc_pt0_cnt_wr;
+    logic         adc_pt0_dn_d, adc_pt0_dn_wr;
+    logic         adc_pt0_en_d, adc_pt0_en_wr;
+    logic [15:0]  adc_pt1_cnt_d, adc_pt1_cnt_wr;
+    logic         adc_pt1_dn_d, adc_pt1_dn_wr;
+    logic         adc_pt1_en_d, adc_pt1_en_wr;
+    logic [16:0]  win_min_d, win_min_wr;
+    assign adc_pt0_cnt_wr = {(be_i[1] ? wdata_i[15:8] : adc_pt0_cnt_q[15:8]), (be_i[0] ? wdata_i[7:0] : adc_pt0_cnt_q[7:0])};
+    assign adc_pt0_dn_wr = be_i[2] ? wdata_i[16] : adc_pt0_dn_q;
+    assign adc_pt0_en_wr = be_i[3] ? wdata_i[31] : adc_pt0_en_q;
+    assign adc_pt1_cnt_wr = {(be_i[1] ? wdata_i[15:8] : adc_pt1_cnt_q[15:8]), (be_i[0] ? wdata_i[7:0] : adc_pt1_cnt_q[7:0])};
+    assign adc_pt1_dn_wr = be_i[2] ? wdata_i[16] : adc_pt1_dn_q;
+    assign adc_pt1_en_wr = be_i[3] ? wdata_i[31] : adc_pt1_en_q;
+    assign win_min_wr = {(be_i[2] ? wdata_i[16] : win_min_q[16]), (be_i[1] ? wdata_i[15:8] : win_min_q[15:8]), (be_i[0] ? wdata_i[7:0] : win_min_q[7:0])};
+
+    always_comb begin
+      adc_pt0_cnt_d = adc_pt0_cnt_q;
+      adc_pt0_dn_d = adc_pt0_dn_q;
+      adc_pt0_en_d = adc_pt0_en_q;
+      adc_pt1_cnt_d = adc_pt1_cnt_q;
+      adc_pt1_dn_d = adc_pt1_dn_q;
+      adc_pt1_en_d = adc_pt1_en_q;
+      win_min_d = win_min_q;
+      if (wr && sel[SelAdcPt0]) begin
+        adc_pt0_cnt_d = adc_pt0_cnt_wr;
+        adc_pt0_dn_d = adc_pt0_dn_wr;
+        adc_pt0_en_d = adc_pt0_en_wr;
+      end
+      if (wr && sel[SelAdcPt1]) begin
+        adc_pt1_cnt_d = adc_pt1_cnt_wr;
+        adc_pt1_dn_d = adc_pt1_dn_wr;
+        adc_pt1_en_d = adc_pt1_en_wr;
+      end
+      if (wr && sel[SelWinMin]) begin
+        win_min_d = win_min_wr;
+      end
+    end
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        adc_pt0_cnt_q <= 16'h0;
+        adc_pt0_dn_q <= 1'h0;
+        adc_pt0_en_q <= 1'h0;
+        adc_pt1_cnt_q <= 16'h0;
+        adc_pt1_dn_q <= 1'h0;
+        adc_pt1_en_q <= 1'h0;
+        win_min_q <= 17'h0;
+      end else begin
+        adc_pt0_cnt_q <= adc_pt0_cnt_d;
+        adc_pt0_dn_q <= adc_pt0_dn_d;
+        adc_pt0_en_q <= adc_pt0_en_d;
+        adc_pt1_cnt_q <= adc_pt1_cnt_d;
+        adc_pt1_dn_q <= adc_pt1_dn_d;
+        adc_pt1_en_q <= adc_pt1_en_d;
+        win_min_q <= win_min_d;
+      end
+    end
+  end else begin : gen_no_adc
+    assign adc_pt0_cnt_q = 16'h0;
+    assign adc_pt0_dn_q = 1'h0;
+    assign adc_pt0_en_q = 1'h0;
+    assign adc_pt1_cnt_q = 16'h0;
+    assign adc_pt1_dn_q = 1'h0;
+    assign adc_pt1_en_q = 1'h0;
+    assign win_min_q = 17'h0;
+  end
+
   // ---- read data: the word of each register, registered, held until the next read ----------
   logic [31:0] rd_id;
   assign rd_id = {32'h53565057};
   logic [31:0] rd_version;
-  assign rd_version = {16'h3, 16'h0};
+  assign rd_version = {16'h3, 16'h1};
   logic [31:0] rd_config;
   assign rd_config = {PhaseWidth, FreqWidth, CntWidth, DtWidth};
   logic [31:0] rd_ctrl;
@@ -734,6 +855,26 @@ module svpwm_regs #(
   assign rd_features = {Trim, 15'h0, Features[15:0]};
   logic [31:0] rd_dtc;
   assign rd_dtc = {25'h0, dtc_isign_q, 3'h0, dtc_en_q};
+  logic [31:0] rd_adc_pt0;
+  assign rd_adc_pt0 = {adc_pt0_en_q, 14'h0, adc_pt0_dn_q, adc_pt0_cnt_q};
+  logic [31:0] rd_adc_pt1;
+  assign rd_adc_pt1 = {adc_pt1_en_q, 14'h0, adc_pt1_dn_q, adc_pt1_cnt_q};
+  logic [31:0] rd_win_min;
+  assign rd_win_min = {15'h0, win_min_q};
+  logic [31:0] rd_win_lo_a;
+  assign rd_win_lo_a = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_lo_a_i : 17'h0)};
+  logic [31:0] rd_win_lo_b;
+  assign rd_win_lo_b = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_lo_b_i : 17'h0)};
+  logic [31:0] rd_win_lo_c;
+  assign rd_win_lo_c = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_lo_c_i : 17'h0)};
+  logic [31:0] rd_win_hi_a;
+  assign rd_win_hi_a = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_hi_a_i : 17'h0)};
+  logic [31:0] rd_win_hi_b;
+  assign rd_win_hi_b = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_hi_b_i : 17'h0)};
+  logic [31:0] rd_win_hi_c;
+  assign rd_win_hi_c = {15'h0, (Features[svpwm_pkg::FeatAdc] ? win_hi_c_i : 17'h0)};
+  logic [31:0] rd_win_status;
+  assign rd_win_status = {26'h0, (Features[svpwm_pkg::FeatAdc] ? win_status_recon_i : 2'h0), 1'h0, (Features[svpwm_pkg::FeatAdc] ? win_status_ok_i : 3'h0)};
 
   // the selected word (0 where no register is selected): AND-OR of the one-hot select as a tree
   // of 4-input LUTs, kept so that synthesis does not chain it: a pair of registers (select and
@@ -763,7 +904,17 @@ module svpwm_regs #(
   (* keep *) logic [31:0] rd_pair11;
   assign rd_pair11 = ({32{sel[SelClkHz]}} & rd_clk_hz) | ({32{sel[SelFeatures]}} & rd_features);
   (* keep *) logic [31:0] rd_pair12;
-  assign rd_pair12 = ({32{sel[SelDtc]}} & rd_dtc);
+  assign rd_pair12 = ({32{sel[SelDtc]}} & rd_dtc) | ({32{sel[SelAdcPt0]}} & rd_adc_pt0);
+  (* keep *) logic [31:0] rd_pair13;
+  assign rd_pair13 = ({32{sel[SelAdcPt1]}} & rd_adc_pt1) | ({32{sel[SelWinMin]}} & rd_win_min);
+  (* keep *) logic [31:0] rd_pair14;
+  assign rd_pair14 = ({32{sel[SelWinLoA]}} & rd_win_lo_a) | ({32{sel[SelWinLoB]}} & rd_win_lo_b);
+  (* keep *) logic [31:0] rd_pair15;
+  assign rd_pair15 = ({32{sel[SelWinLoC]}} & rd_win_lo_c) | ({32{sel[SelWinHiA]}} & rd_win_hi_a);
+  (* keep *) logic [31:0] rd_pair16;
+  assign rd_pair16 = ({32{sel[SelWinHiB]}} & rd_win_hi_b) | ({32{sel[SelWinHiC]}} & rd_win_hi_c);
+  (* keep *) logic [31:0] rd_pair17;
+  assign rd_pair17 = ({32{sel[SelWinStatus]}} & rd_win_status);
   (* keep *) logic [31:0] rd_grp0;
   assign rd_grp0 = rd_pair0 | rd_pair1 | rd_pair2 | rd_pair3;
   (* keep *) logic [31:0] rd_grp1;
@@ -771,12 +922,14 @@ module svpwm_regs #(
   (* keep *) logic [31:0] rd_grp2;
   assign rd_grp2 = rd_pair8 | rd_pair9 | rd_pair10 | rd_pair11;
   (* keep *) logic [31:0] rd_grp3;
-  assign rd_grp3 = rd_pair12;
+  assign rd_grp3 = rd_pair12 | rd_pair13 | rd_pair14 | rd_pair15;
+  (* keep *) logic [31:0] rd_grp4;
+  assign rd_grp4 = rd_pair16 | rd_pair17;
   logic [31:0] rdata_d, rdata_q;
 
   always_comb begin
     rdata_d = rdata_q;
-    if (rd) rdata_d = rd_grp0 | rd_grp1 | rd_grp2 | rd_grp3;
+    if (rd) rdata_d = rd_grp0 | rd_grp1 | rd_grp2 | rd_grp3 | rd_grp4;
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -817,13 +970,20 @@ module svpwm_regs #(
   assign presc_o = presc_q;
   assign dtc_en_o = dtc_en_q;
   assign dtc_isign_o = dtc_isign_q;
+  assign adc_pt0_cnt_o = adc_pt0_cnt_q;
+  assign adc_pt0_dn_o = adc_pt0_dn_q;
+  assign adc_pt0_en_o = adc_pt0_en_q;
+  assign adc_pt1_cnt_o = adc_pt1_cnt_q;
+  assign adc_pt1_dn_o = adc_pt1_dn_q;
+  assign adc_pt1_en_o = adc_pt1_en_q;
+  assign win_min_o = win_min_q;
 
   // data bits no writable field uses; the byte offset within a word
   logic unused_bits;
   assign unused_bits = ^{wdata_i[30:26], addr_i[1:0]};
   // live inputs, data bits and byte lanes only builds with some feature (or without Trim) read
   logic unused_cond;
-  assign unused_cond = ^{status_sector_i, carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i, wdata_i[25:16], wdata_i[31], be_i[2], be_i[3]};
+  assign unused_cond = ^{status_sector_i, carrier_count_i, carrier_up_i, period_act_i, cmp_a_i, cmp_b_i, cmp_c_i, win_lo_a_i, win_lo_b_i, win_lo_c_i, win_hi_a_i, win_hi_b_i, win_hi_c_i, win_status_ok_i, win_status_recon_i, wdata_i[25:16], wdata_i[31], be_i[2], be_i[3]};
 
 endmodule
 

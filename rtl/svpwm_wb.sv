@@ -4,7 +4,7 @@
 // continuously; the core samples its inputs at its load points, so a write takes effect at the next
 // load point (carrier valley and/or peak, CTRL.upd), never in the middle of a carrier period.
 // Parameters:
-//   AddrWidth - byte address width of the bus port (>= 7); addresses without a register read 0
+//   AddrWidth - byte address width of the bus port (>= 8); addresses without a register read 0
 //   MinPeriod, FreqMax, GatePol - passed to svpwm_core (GatePol is also the reset value of CTRL.pol)
 //               MinPeriod defaults to the build's (svpwm_pkg::min_period(Features), as svpwm_mmio)
 //   Features  - the build, a mask of svpwm_pkg::Feat* bits (default svpwm_pkg::CfgFull; svpwm_mmio):
@@ -21,7 +21,7 @@
 `default_nettype none
 
 module svpwm_wb #(
-  parameter int         AddrWidth = 8,                           // byte address width (>= 7)
+  parameter int         AddrWidth = 8,                           // byte address width (>= 8)
   parameter logic [31:0] Features = svpwm_pkg::CfgFull,          // the build (svpwm_pkg::Cfg*)
   parameter bit         Pipelined = 1'b1,                        // 1 B4 pipelined, 0 B4 classic
   parameter int         MinPeriod = svpwm_pkg::min_period(Features),   // svpwm_core MinPeriod
@@ -51,7 +51,8 @@ module svpwm_wb #(
   output logic                 valley_o,           // pulse: first clock of a carrier period
   output logic                 peak_o,             // pulse: carrier peak
   output logic                 update_o,           // pulse: new compare values active from this clock
-  output logic                 adc_trig_o,         // pulse: ADC trigger (CTRL.adc_trig)
+  output logic                 adc_trig_o,         // pulse: ADC trigger (CTRL.adc_trig, ADC_PT0 / ADC_PT1)
+  output logic [1:0]           adc_pt_o,           // pulse: ADC trigger point k (ADC_PT0 / ADC_PT1; feature adc)
   output logic                 sync_o,             // pulse at each valley, for other cores' sync_i
   output logic                 running_o,          // gates modulating (e.g. an LED)
   output logic                 tripped_o           // safe state forced (e.g. an LED)
@@ -82,7 +83,7 @@ module svpwm_wb #(
     .req_i (req), .we_i (we), .addr_i (addr), .wdata_i (wdata), .be_i (be), .rdata_o (rdata),
     .fault_i (fault_i), .sync_i (sync_i), .gate_hi_o (gate_hi_o), .gate_lo_o (gate_lo_o), .pole_o (pole_o),
     .valley_o (valley_o), .peak_o (peak_o), .update_o (update_o), .adc_trig_o (adc_trig_o),
-    .sync_o (sync_o), .running_o (running_o), .tripped_o (tripped_o)
+    .adc_pt_o (adc_pt_o), .sync_o (sync_o), .running_o (running_o), .tripped_o (tripped_o)
   );
 
 endmodule

@@ -19,6 +19,8 @@ Examples:
   svpwmctl.py -p /dev/ttyUSB1 set-dt 0.5 --dt-fall 0.8   (rising / falling dead times, the full variant)
   svpwmctl.py -p /dev/ttyUSB1 set-freq 50 ; svpwmctl.py -p /dev/ttyUSB1 set-m 0.9 ; ... start
   svpwmctl.py -p /dev/ttyUSB1 read CTRL.mode ; svpwmctl.py -p /dev/ttyUSB1 write VF_MMAX 0x8000
+  svpwmctl.py -p /dev/ttyUSB1 set-adc-pt 0 --count 100 --down ; ... set-win-min --us 2 ; ... windows
+                                               (current sampling: trigger points, shunt windows; feature adc)
 The port can also be given as $SVPWM_PORT. `svpwmctl.py COMMAND --help` for each command.
 """
 from __future__ import annotations
@@ -202,12 +204,12 @@ class Config:
     def fsw_hz(self, half_period: int) -> Fraction:
         return Fraction(self.clk_hz, 2 * half_period)
 
-    def clocks(self, us: Fraction, what: str) -> int:
-        """Dead time / minimum pulse in microseconds -> clocks (DtWidth bits)."""
+    def clocks(self, us: Fraction, what: str, bits: int | None = None) -> int:
+        """Dead time / minimum pulse (or another time of `bits` bits) in microseconds -> clocks (DtWidth bits)."""
         if us < 0:
             raise ValueError(f"{what} {_fmt(us)} us must be >= 0")
         n = round_half_away(Fraction(us) * self.clk_hz / 1_000_000)
-        top = (1 << self.dt_width) - 1
+        top = (1 << (self.dt_width if bits is None else bits)) - 1
         if n > top:
             raise ValueError(f"{what} {_fmt(us)} us = {n} clocks is out of range: at most {top} clocks "
                              f"({_fmt(Fraction(top * 1_000_000, self.clk_hz))} us at {self.clk_hz} Hz)")
@@ -429,6 +431,21 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("set-dtc", "dead-time compensation from the phase current signs (DTC register)")
     p.add_argument("state", choices=("on", "off"))
     p.add_argument("--isign", help="current signs {c, b, a} as 3 bits, 1 = negative, e.g. 0b101 (default: unchanged)")
+    p = add("set-adc-pt", "ADC trigger point 0 or 1 (ADC_PT0 / ADC_PT1, feature adc): adc_pt_o[k] and adc_trig_o "
+                          "pulse once per carrier period where the carrier is at the count (0: the valley, >= the "
+                          "half period: the peak), in force from the update after the next sample point")
+    p.add_argument("point", type=int, choices=(0, 1))
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--count", help="carrier count in clocks, 0 .. 65535 (0 the valley; >= PERIOD_ACT the peak)")
+    g.add_argument("--off", action="store_true", help="turn the point off (its count and direction are kept)")
+    p.add_argument("--down", action="store_true", help="on the down count (default: the up count)")
+    p = add("set-win-min", "minimum low-side shunt window (WIN_MIN, feature adc): a phase is readable "
+                           "(WIN_STATUS.ok) when its low-side window is at least this long")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--us", help="in microseconds, rounded to clocks")
+    g.add_argument("--clocks", help="in core clocks, 0 .. 131071")
+    add("windows", "the shunt-window report (feature adc): per phase the low- and high-side windows, which phases "
+                   "are readable, the phase to reconstruct; WIN_MIN and the trigger points")
     return ap
 
 
@@ -437,6 +454,38 @@ def dead_times(dt_fields: dict[str, int]) -> tuple[int, int]:
     DT.dtf_en is 1, else DT.dt (a build without the feature dtf reads dtf_en 0)."""
     dt = dt_fields["dt"]
     return dt, (dt_fields["dtf"] if dt_fields.get("dtf_en") else dt)
+
+
+def _point_note(board: Board, n: int) -> str:
+    """What a trigger-point count means for the half period in force (PERIOD_ACT, else PERIOD)."""
+    p = board.read(R.PERIOD_ACT.addr) if R.built(R.PERIOD_ACT, *board.features()) else 0
+    p = p or board.read(R.PERIOD.addr)
+    if n == 0:
+        return " (the valley)"
+    return f" (>= the half period {p}: at the peak)" if n >= p else ""
+
+
+def windows_report(board: Board) -> list[str]:
+    """The shunt-window report and the settings it depends on, one line each (feature adc)."""
+    cfg = board.config()
+    lo = [board.read(r.addr) for r in (R.WIN_LO_A, R.WIN_LO_B, R.WIN_LO_C)]
+    hi = [board.read(r.addr) for r in (R.WIN_HI_A, R.WIN_HI_B, R.WIN_HI_C)]
+    st, wm = board.read_reg(R.WIN_STATUS), board.read(R.WIN_MIN.addr)
+    running = board.read_reg(R.STATUS)["running"]
+    out = [f"{'running':18} {running}" + ("" if running else "  (the report reads 0 unless running)")]
+    for k, ph in enumerate("abc"):
+        out.append(f"{'phase ' + ph:18} low {lo[k]} clocks ({_fmt(cfg.us(lo[k]))} us) "
+                   f"{'readable' if st['ok'] >> k & 1 else 'too short'}, high {hi[k]} clocks ({_fmt(cfg.us(hi[k]))} us)")
+    r = st["recon"]
+    others = " and ".join("abc"[k] for k in range(3) if k != r)
+    out.append(f"{'reconstruct':18} " + (f"{'abc'[r]} (= -({' + '.join(others.split(' and '))}), from {others})"
+                                       if r < 3 else f"invalid ({r})"))
+    out.append(f"{'win_min':18} {wm} clocks ({_fmt(cfg.us(wm))} us)")
+    for k, reg in enumerate((R.ADC_PT0, R.ADC_PT1)):
+        pt = board.read_reg(reg)
+        out.append(f"{'adc_pt' + str(k):18} " + (f"count {pt['cnt']} {'down' if pt['dn'] else 'up'}" if pt["en"]
+                                                 else "off"))
+    return out
 
 
 def _locked_check(board: Board, what: str) -> None:
@@ -544,6 +593,20 @@ def run(args, board: Board) -> str:
             vals["isign"] = parse_int(args.isign)
         board.write_fields(R.DTC, **vals)
         return ", ".join(f"DTC.{k} = {v}" for k, v in vals.items())
+    if c == "set-adc-pt":
+        reg = (R.ADC_PT0, R.ADC_PT1)[args.point]
+        board.need(f"set-adc-pt {args.point}", "adc")
+        if args.off:
+            if args.down:
+                raise ValueError("--down with --off: give the direction with --count")
+            board.write_fields(reg, en=0)
+            return f"{reg.name}.en = 0 (off)"
+        n = parse_int(args.count)
+        board.write_fields(reg, cnt=n, dn=int(args.down), en=1)
+        return f"{reg.name} = count {n} {'down' if args.down else 'up'}" + _point_note(board, n)
+    if c == "windows":
+        board.need("windows", "adc")
+        return "\n".join(windows_report(board))
     if c == "set-m":
         if args.fundamental:
             from svpwm_model.ideal import overmod_m_for
@@ -563,6 +626,15 @@ def run(args, board: Board) -> str:
         _period_check(board, cfg, p)
         board.write_fields(R.PERIOD, period=p)
         return f"PERIOD = {p} clocks (f_sw {_fmt(cfg.fsw_hz(p), 8)} Hz)"
+    if c == "set-win-min":
+        board.need("set-win-min", "adc")
+        top = R.WIN_MIN.field("win_min").width
+        if args.clocks is not None:
+            n = parse_int(args.clocks)
+        else:
+            n = cfg.clocks(parse_num(args.us), "minimum window", top)
+        board.write_fields(R.WIN_MIN, win_min=n)
+        return f"WIN_MIN = {n} clocks ({_fmt(cfg.us(n))} us)"
     if c in ("set-dt", "set-mp"):
         reg, what = (R.DT, "dead time") if c == "set-dt" else (R.MP, "minimum pulse")
         fall = getattr(args, "dt_fall", None)

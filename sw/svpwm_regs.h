@@ -23,7 +23,7 @@ extern "C" {
 #define SVPWM__VERSION__MINOR_bm 0xffff
 #define SVPWM__VERSION__MINOR_bp 0
 #define SVPWM__VERSION__MINOR_bw 16
-#define SVPWM__VERSION__MINOR_reset 0x0
+#define SVPWM__VERSION__MINOR_reset 0x1
 #define SVPWM__VERSION__MAJOR_bm 0xffff0000
 #define SVPWM__VERSION__MAJOR_bp 16
 #define SVPWM__VERSION__MAJOR_bw 16
@@ -263,7 +263,7 @@ extern "C" {
 #define SVPWM__FEATURES__FEATURES_bm 0xffff
 #define SVPWM__FEATURES__FEATURES_bp 0
 #define SVPWM__FEATURES__FEATURES_bw 16
-#define SVPWM__FEATURES__FEATURES_reset 0x3fff
+#define SVPWM__FEATURES__FEATURES_reset 0x7fff
 #define SVPWM__FEATURES__TRIM_bm 0x80000000
 #define SVPWM__FEATURES__TRIM_bp 31
 #define SVPWM__FEATURES__TRIM_bw 1
@@ -278,6 +278,86 @@ extern "C" {
 #define SVPWM__DTC__ISIGN_bp 4
 #define SVPWM__DTC__ISIGN_bw 3
 #define SVPWM__DTC__ISIGN_reset 0x0
+
+// reg - svpwm::ADC_PT0
+#define SVPWM__ADC_PT0__CNT_bm 0xffff
+#define SVPWM__ADC_PT0__CNT_bp 0
+#define SVPWM__ADC_PT0__CNT_bw 16
+#define SVPWM__ADC_PT0__CNT_reset 0x0
+#define SVPWM__ADC_PT0__DN_bm 0x10000
+#define SVPWM__ADC_PT0__DN_bp 16
+#define SVPWM__ADC_PT0__DN_bw 1
+#define SVPWM__ADC_PT0__DN_reset 0x0
+#define SVPWM__ADC_PT0__EN_bm 0x80000000
+#define SVPWM__ADC_PT0__EN_bp 31
+#define SVPWM__ADC_PT0__EN_bw 1
+#define SVPWM__ADC_PT0__EN_reset 0x0
+
+// reg - svpwm::ADC_PT1
+#define SVPWM__ADC_PT1__CNT_bm 0xffff
+#define SVPWM__ADC_PT1__CNT_bp 0
+#define SVPWM__ADC_PT1__CNT_bw 16
+#define SVPWM__ADC_PT1__CNT_reset 0x0
+#define SVPWM__ADC_PT1__DN_bm 0x10000
+#define SVPWM__ADC_PT1__DN_bp 16
+#define SVPWM__ADC_PT1__DN_bw 1
+#define SVPWM__ADC_PT1__DN_reset 0x0
+#define SVPWM__ADC_PT1__EN_bm 0x80000000
+#define SVPWM__ADC_PT1__EN_bp 31
+#define SVPWM__ADC_PT1__EN_bw 1
+#define SVPWM__ADC_PT1__EN_reset 0x0
+
+// reg - svpwm::WIN_MIN
+#define SVPWM__WIN_MIN__WIN_MIN_bm 0x1ffff
+#define SVPWM__WIN_MIN__WIN_MIN_bp 0
+#define SVPWM__WIN_MIN__WIN_MIN_bw 17
+#define SVPWM__WIN_MIN__WIN_MIN_reset 0x0
+
+// reg - svpwm::WIN_LO_A
+#define SVPWM__WIN_LO_A__LO_bm 0x1ffff
+#define SVPWM__WIN_LO_A__LO_bp 0
+#define SVPWM__WIN_LO_A__LO_bw 17
+#define SVPWM__WIN_LO_A__LO_reset 0x0
+
+// reg - svpwm::WIN_LO_B
+#define SVPWM__WIN_LO_B__LO_bm 0x1ffff
+#define SVPWM__WIN_LO_B__LO_bp 0
+#define SVPWM__WIN_LO_B__LO_bw 17
+#define SVPWM__WIN_LO_B__LO_reset 0x0
+
+// reg - svpwm::WIN_LO_C
+#define SVPWM__WIN_LO_C__LO_bm 0x1ffff
+#define SVPWM__WIN_LO_C__LO_bp 0
+#define SVPWM__WIN_LO_C__LO_bw 17
+#define SVPWM__WIN_LO_C__LO_reset 0x0
+
+// reg - svpwm::WIN_HI_A
+#define SVPWM__WIN_HI_A__HI_bm 0x1ffff
+#define SVPWM__WIN_HI_A__HI_bp 0
+#define SVPWM__WIN_HI_A__HI_bw 17
+#define SVPWM__WIN_HI_A__HI_reset 0x0
+
+// reg - svpwm::WIN_HI_B
+#define SVPWM__WIN_HI_B__HI_bm 0x1ffff
+#define SVPWM__WIN_HI_B__HI_bp 0
+#define SVPWM__WIN_HI_B__HI_bw 17
+#define SVPWM__WIN_HI_B__HI_reset 0x0
+
+// reg - svpwm::WIN_HI_C
+#define SVPWM__WIN_HI_C__HI_bm 0x1ffff
+#define SVPWM__WIN_HI_C__HI_bp 0
+#define SVPWM__WIN_HI_C__HI_bw 17
+#define SVPWM__WIN_HI_C__HI_reset 0x0
+
+// reg - svpwm::WIN_STATUS
+#define SVPWM__WIN_STATUS__OK_bm 0x7
+#define SVPWM__WIN_STATUS__OK_bp 0
+#define SVPWM__WIN_STATUS__OK_bw 3
+#define SVPWM__WIN_STATUS__OK_reset 0x0
+#define SVPWM__WIN_STATUS__RECON_bm 0x30
+#define SVPWM__WIN_STATUS__RECON_bp 4
+#define SVPWM__WIN_STATUS__RECON_bw 2
+#define SVPWM__WIN_STATUS__RECON_reset 0x0
 
 // addrmap - svpwm
 typedef struct __attribute__ ((__packed__)) {
@@ -306,11 +386,21 @@ typedef struct __attribute__ ((__packed__)) {
     uint32_t CLK_HZ;
     uint32_t FEATURES;
     uint32_t DTC;
+    uint32_t ADC_PT0;
+    uint32_t ADC_PT1;
+    uint32_t WIN_MIN;
+    uint32_t WIN_LO_A;
+    uint32_t WIN_LO_B;
+    uint32_t WIN_LO_C;
+    uint32_t WIN_HI_A;
+    uint32_t WIN_HI_B;
+    uint32_t WIN_HI_C;
+    uint32_t WIN_STATUS;
 } svpwm_t;
 
 
 #if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)
-static_assert(sizeof(svpwm_t) == 0x64, "Packing error");
+static_assert(sizeof(svpwm_t) == 0x8c, "Packing error");
 #endif
 
 // CTRL.mode: named values (encode svpwm_mode_e)
@@ -335,9 +425,10 @@ static_assert(sizeof(svpwm_t) == 0x64, "Packing error");
 #define SVPWM_FEAT_PRESC (1u << 11)
 #define SVPWM_FEAT_SYNC (1u << 12)
 #define SVPWM_FEAT_DSP (1u << 13)
+#define SVPWM_FEAT_ADC (1u << 14)
 // named configurations (svpwm_pkg::Cfg*): the FEATURES.features value of each
-#define SVPWM_CFG_FULL 0x3fffu
-#define SVPWM_CFG_FOC 0x3f9cu
+#define SVPWM_CFG_FULL 0x7fffu
+#define SVPWM_CFG_FOC 0x7f9cu
 #define SVPWM_CFG_VF 0x21e3u
 #define SVPWM_CFG_MINIMAL 0x2004u
 #define SVPWM_CFG_TINY 0x0001u

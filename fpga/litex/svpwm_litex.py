@@ -8,7 +8,8 @@ the generated register block svpwm_regs + svpwm_core) behind a LiteX Wishbone in
 
 Parameters (SVPWM):
   pads             - a record with hi (3), lo (3) gate outputs ({c, b, a}, 1 = transistor on), fault (1,
-                     input) and, optionally, adc_trig, running, tripped (1, outputs)
+                     input) and, optionally, adc_trig, running, tripped (1, outputs) and adc_pt (2, outputs:
+                     bit k pulses at the ADC trigger point ADC_PT<k>; 0 in a build without the feature adc)
   clk_hz           - the system clock in Hz (read back in the CLK_HZ register; the firmware converts units
                      with it)
   fault_active_low - the fault pad is active low (board pins with a pull-up); the core's fault_i is
@@ -21,7 +22,7 @@ Parameters (SVPWM):
   min_period       - svpwm_core MinPeriod, default the build's (fixed.latencies(features)["MIN_PERIOD"], the same
                      as svpwm_pkg::min_period(Features), svpwm_wb's own default)
 Bus: 32-bit data, word addressed (LiteX); the core sees byte addresses (bus.adr << 2), AddrWidth 8, so
-the region is 256 bytes (the map, docs/registers.md, uses 0x00..0x5F; the rest reads 0). Classic cycles
+the region is 256 bytes (the map, docs/registers.md, uses 0x00..0x8B; the rest reads 0). Classic cycles
 (Pipelined = 0): LiteX masters hold STB until ACK; one access every two clocks, ACK the clock after.
 Latency: a write is in its register (and at the core's input) from the clock its ACK is high.
 Restrictions: the core and the bus share the system clock (sys); the fault pad is asynchronous (the core
@@ -64,6 +65,7 @@ class SVPWM(LiteXModule):
         self.hi = Signal(3)
         self.lo = Signal(3)
         self.adc_trig = Signal()
+        self.adc_pt = Signal(2)     # adc_pt_o: trigger point k (0 in a build without adc)
         self.running = Signal()
         self.tripped = Signal()
 
@@ -100,12 +102,13 @@ class SVPWM(LiteXModule):
             o_peak_o    = peak,
             o_update_o  = update,
             o_adc_trig_o = self.adc_trig,
+            o_adc_pt_o  = self.adc_pt,
             o_sync_o    = sync_o,
             o_running_o = self.running,
             o_tripped_o = self.tripped,
         )
         self.comb += [pads.hi.eq(self.hi), pads.lo.eq(self.lo), self.bus.err.eq(0)]
-        for name in ("adc_trig", "running", "tripped"):
+        for name in ("adc_trig", "adc_pt", "running", "tripped"):
             if hasattr(pads, name):
                 self.comb += getattr(pads, name).eq(getattr(self, name))
         for f in rtl_sources():

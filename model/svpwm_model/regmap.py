@@ -15,7 +15,7 @@ from dataclasses import dataclass, replace
 from . import config
 
 DATA_WIDTH = 32
-SIZE = 0x64  # bytes; higher addresses read 0
+SIZE = 0x8C  # bytes; higher addresses read 0
 FEATURE_PARAM = "Features"  # svpwm_regs parameter: the build's feature mask (FEATURES.features)
 TRIM_PARAM = "Trim"  # svpwm_regs parameter: 1 = the iCEstick's board cut (FEATURES.trim)
 
@@ -91,7 +91,7 @@ REGISTERS: tuple[Register, ...] = (
         Field("id", 0, 32, "const", 0x53565057),
     )),
     Register("VERSION", 0x04, (
-        Field("minor", 0, 16, "const", 0x0),
+        Field("minor", 0, 16, "const", 0x1),
         Field("major", 16, 16, "const", 0x3),
     )),
     Register("CONFIG", 0x08, (
@@ -184,13 +184,48 @@ REGISTERS: tuple[Register, ...] = (
         Field("clk_hz", 0, 32, "const", 0x0, rst_param="ClkHz"),
     )),
     Register("FEATURES", 0x5C, (
-        Field("features", 0, 16, "const", 0x3FFF, rst_param="Features"),
+        Field("features", 0, 16, "const", 0x7FFF, rst_param="Features"),
         Field("trim", 31, 1, "const", 0x0, rst_param="Trim"),
     )),
     Register("DTC", 0x60, (
         Field("en", 0, 1, "rw", 0x0, port="dtc_en_o", features=('dtc',)),
         Field("isign", 4, 3, "rw", 0x0, port="dtc_isign_o", features=('dtc',)),
     ), features=('dtc',)),
+    Register("ADC_PT0", 0x64, (
+        Field("cnt", 0, 16, "rw", 0x0, port="adc_pt0_cnt_o", features=('adc',)),
+        Field("dn", 16, 1, "rw", 0x0, port="adc_pt0_dn_o", features=('adc',)),
+        Field("en", 31, 1, "rw", 0x0, port="adc_pt0_en_o", features=('adc',)),
+    ), features=('adc',)),
+    Register("ADC_PT1", 0x68, (
+        Field("cnt", 0, 16, "rw", 0x0, port="adc_pt1_cnt_o", features=('adc',)),
+        Field("dn", 16, 1, "rw", 0x0, port="adc_pt1_dn_o", features=('adc',)),
+        Field("en", 31, 1, "rw", 0x0, port="adc_pt1_en_o", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_MIN", 0x6C, (
+        Field("win_min", 0, 17, "rw", 0x0, port="win_min_o", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_LO_A", 0x70, (
+        Field("lo", 0, 17, "status", 0x0, port="win_lo_a_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_LO_B", 0x74, (
+        Field("lo", 0, 17, "status", 0x0, port="win_lo_b_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_LO_C", 0x78, (
+        Field("lo", 0, 17, "status", 0x0, port="win_lo_c_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_HI_A", 0x7C, (
+        Field("hi", 0, 17, "status", 0x0, port="win_hi_a_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_HI_B", 0x80, (
+        Field("hi", 0, 17, "status", 0x0, port="win_hi_b_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_HI_C", 0x84, (
+        Field("hi", 0, 17, "status", 0x0, port="win_hi_c_i", features=('adc',)),
+    ), features=('adc',)),
+    Register("WIN_STATUS", 0x88, (
+        Field("ok", 0, 3, "status", 0x0, port="win_status_ok_i", features=('adc',)),
+        Field("recon", 4, 2, "status", 0x0, port="win_status_recon_i", features=('adc',)),
+    ), features=('adc',)),
 )
 
 BY_NAME: dict[str, Register] = {r.name: r for r in REGISTERS}
@@ -239,3 +274,13 @@ CMP_C = BY_NAME["CMP_C"]
 CLK_HZ = BY_NAME["CLK_HZ"]
 FEATURES = BY_NAME["FEATURES"]
 DTC = BY_NAME["DTC"]
+ADC_PT0 = BY_NAME["ADC_PT0"]
+ADC_PT1 = BY_NAME["ADC_PT1"]
+WIN_MIN = BY_NAME["WIN_MIN"]
+WIN_LO_A = BY_NAME["WIN_LO_A"]
+WIN_LO_B = BY_NAME["WIN_LO_B"]
+WIN_LO_C = BY_NAME["WIN_LO_C"]
+WIN_HI_A = BY_NAME["WIN_HI_A"]
+WIN_HI_B = BY_NAME["WIN_HI_B"]
+WIN_HI_C = BY_NAME["WIN_HI_C"]
+WIN_STATUS = BY_NAME["WIN_STATUS"]

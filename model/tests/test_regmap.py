@@ -35,18 +35,32 @@ def test_regmap_consistent():
     f = R.CLK_HZ.field("clk_hz")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 32, 0, "ClkHz")
     # FEATURES (map 2.2; 3.0: the feature mask and the board cut), appended after CLK_HZ; DTC (2.4) after it
-    assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0003_0000)
+    assert (R.FEATURES.addr, R.VERSION.reset) == (0x5C, 0x0003_0001)
     # map 2.4: the falling dead time and its enable in DT beside dt, feature dtf, reset 0 (= dt)
     fields = {f.name: (f.lsb, f.width, f.kind, f.reset, f.features) for f in R.DT.fields}
     assert fields == {"dt": (0, 10, "rw", 0, ()), "dtf": (16, 10, "rw", 0, ("dtf",)),
                       "dtf_en": (31, 1, "rw", 0, ("dtf",))}, fields
     assert R.DT.encode(dt=48, dtf=30, dtf_en=1) == 0x801E_0030
-    assert (R.DTC.addr, R.SIZE, R.DTC.encode(en=1, isign=5)) == (0x60, 0x64, 0x51)
+    assert (R.DTC.addr, R.DTC.encode(en=1, isign=5)) == (0x60, 0x51)
+    # map 3.1 (feature adc): the trigger points, the minimum window and the window report after DTC
+    assert [(r.name, r.addr) for r in R.REGISTERS if r.addr > R.DTC.addr] == [
+        ("ADC_PT0", 0x64), ("ADC_PT1", 0x68), ("WIN_MIN", 0x6C), ("WIN_LO_A", 0x70), ("WIN_LO_B", 0x74),
+        ("WIN_LO_C", 0x78), ("WIN_HI_A", 0x7C), ("WIN_HI_B", 0x80), ("WIN_HI_C", 0x84), ("WIN_STATUS", 0x88)]
+    assert R.SIZE == 0x8C
+    for r in (R.ADC_PT0, R.ADC_PT1):
+        assert {f.name: (f.lsb, f.width, f.kind) for f in r.fields} == {
+            "cnt": (0, 16, "rw"), "dn": (16, 1, "rw"), "en": (31, 1, "rw")}, r.name
+    assert R.ADC_PT1.encode(cnt=0x300, dn=1, en=1) == 0x8001_0300
+    assert [(f.name, f.lsb, f.width, f.kind) for f in R.WIN_MIN.fields] == [("win_min", 0, 17, "rw")]
+    for r in (R.WIN_LO_A, R.WIN_LO_B, R.WIN_LO_C, R.WIN_HI_A, R.WIN_HI_B, R.WIN_HI_C):
+        assert [(f.lsb, f.width, f.kind) for f in r.fields] == [(0, 17, "status")], r.name
+    assert {f.name: (f.lsb, f.width, f.kind) for f in R.WIN_STATUS.fields} == {
+        "ok": (0, 3, "status"), "recon": (4, 2, "status")}
     f, t = R.FEATURES.field("features"), R.FEATURES.field("trim")
     assert (f.kind, f.lsb, f.width, f.reset, f.rst_param) == ("const", 0, 16, config.FULL, R.FEATURE_PARAM)
     assert (t.kind, t.lsb, t.width, t.reset, t.rst_param) == ("const", 31, 1, 0, R.TRIM_PARAM)
     assert (R.FEATURE_PARAM, R.TRIM_PARAM, R.FEATURES.mask()) == ("Features", "Trim", 0x8000_FFFF)
-    assert R.FEATURES.encode(features=config.CONFIGS["foc"], trim=1) == 0x8000_3F9C
+    assert R.FEATURES.encode(features=config.CONFIGS["foc"], trim=1) == 0x8000_7F9C
     # CONFIG (map 2.3): each width is the wrapper's parameter of that name, default the map's field widths
     assert {f.name: (f.rst_param, f.reset) for f in R.CONFIG.fields} == {
         "dt_width": ("DtWidth", 10), "cnt_width": ("CntWidth", 16), "freq_width": ("FreqWidth", 24),
@@ -58,7 +72,9 @@ def test_regmap_consistent():
 # the feature(s) each register / field belongs to (issue 28): typed here once more on purpose, the
 # generator's input (rdl/svpwm.rdl) is checked against this
 FEATURE_REGS = {"FREQ": ("freq", "vf"), "THETA": ("polar", "dq"), "V1": ("ab", "dq"), "V2": ("ab", "dq"),
-                "VF_BOOST": ("vf",), "VF_SLOPE": ("vf",), "VF_MMAX": ("vf",), "PRESC": ("presc",), "DTC": ("dtc",)}
+                "VF_BOOST": ("vf",), "VF_SLOPE": ("vf",), "VF_MMAX": ("vf",), "PRESC": ("presc",), "DTC": ("dtc",),
+                **{n: ("adc",) for n in ("ADC_PT0", "ADC_PT1", "WIN_MIN", "WIN_LO_A", "WIN_LO_B", "WIN_LO_C",
+                                         "WIN_HI_A", "WIN_HI_B", "WIN_HI_C", "WIN_STATUS")}}
 FEATURE_FIELDS = {("CTRL", "sync_en"): ("sync",), ("CTRL", "upd"): ("upd",), ("CTRL", "dpwm"): ("dpwm",),
                   ("CTRL", "om"): ("sixstep",), ("CTRL", "vsc_off"): ("carry",), ("DT", "dtf"): ("dtf",),
                   ("DT", "dtf_en"): ("dtf",)}
@@ -89,14 +105,18 @@ def test_variants():
     for r in v:
         full = R.BY_NAME[r.name]
         assert r.addr == full.addr and r.fields == tuple(f for f in full.fields if R.built(f, config.TINY, True))
-    # minimal (POLAR only): no FREQ, V1, V2, VF_*, PRESC, DTC; CTRL without sync_en, upd, dpwm, om, vsc_off
+    # minimal (POLAR only): no FREQ, V1, V2, VF_*, PRESC, DTC, ADC_PT*, WIN_*; CTRL without sync_en, upd, dpwm,
+    # om, vsc_off
+    adc = {"ADC_PT0", "ADC_PT1", "WIN_MIN", "WIN_LO_A", "WIN_LO_B", "WIN_LO_C", "WIN_HI_A", "WIN_HI_B", "WIN_HI_C",
+           "WIN_STATUS"}
     m = {r.name: r for r in R.variant(config.CONFIGS["minimal"])}
-    assert set(R.BY_NAME) - set(m) == {"FREQ", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC", "DTC"}
+    assert set(R.BY_NAME) - set(m) == {"FREQ", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC", "DTC"} | adc
+    assert adc & {r.name for r in R.variant(config.CONFIGS["vf"])} == set()
     assert [f.name for f in m["CTRL"].fields] == ["en", "trip_cbc", "safe_lo", "pol", "lock", "fault_clear",
                                                   "mode", "adc_trig"]
     assert R.absent_mask(R.CTRL, config.CONFIGS["minimal"]) == 0x000F_3002
     assert R.absent_mask(R.THETA, config.CONFIGS["vf"]) == 0xFFFF and R.absent_mask(R.THETA) == 0
-    # foc: every register but FREQ and VF_*, CTRL without dpwm and om
+    # foc: every register but FREQ and VF_* (ADC_PT*, WIN_* included), CTRL without dpwm and om
     f = {r.name: r for r in R.variant(config.CONFIGS["foc"])}
     assert set(R.BY_NAME) - set(f) == {"FREQ", "VF_BOOST", "VF_SLOPE", "VF_MMAX"}
     assert R.absent_mask(R.CTRL, config.CONFIGS["foc"]) == 0x0007_0000

@@ -8,7 +8,7 @@
 `default_nettype none
 
 module tb_svpwm_fusesoc #(
-  parameter int Features = 32'h3fff        // svpwm_pkg::CfgFull (int: FuseSoC passes an integer)
+  parameter int Features = 32'h7fff        // svpwm_pkg::CfgFull (int: FuseSoC passes an integer)
 );
   logic        clk = 1'b0, rst_n = 1'b0, req = 1'b0;
   logic [7:0]  addr = '0;
@@ -21,7 +21,7 @@ module tb_svpwm_fusesoc #(
     .clk_i (clk), .rst_ni (rst_n), .req_i (req), .we_i (1'b0), .addr_i (addr), .wdata_i (32'h0),
     .be_i (4'hf), .rdata_o (rdata), .fault_i (1'b0), .sync_i (1'b0), .gate_hi_o (gate_hi),
     .gate_lo_o (gate_lo), .pole_o (), .valley_o (), .peak_o (), .update_o (), .adc_trig_o (),
-    .sync_o (), .running_o (), .tripped_o ()
+    .adc_pt_o (), .sync_o (), .running_o (), .tripped_o ()
   );
 
   task automatic check_read(input logic [7:0] a, input logic [31:0] exp);

@@ -83,6 +83,7 @@ module svpwm_ice40_sys #(
   // outputs the board does not use (no pins for them)
   logic [2:0] unused_pole;
   logic       unused_valley, unused_peak, unused_update, unused_adc_trig, unused_sync;
+  logic [1:0] unused_adc_pt;
 
   svpwm_mmio #(
     .AddrWidth (8),
@@ -112,6 +113,7 @@ module svpwm_ice40_sys #(
     .peak_o     (unused_peak),
     .update_o   (unused_update),
     .adc_trig_o (unused_adc_trig),
+    .adc_pt_o   (unused_adc_pt),
     .sync_o     (unused_sync),
     .running_o  (led_run_o),
     .tripped_o  (led_fault_o)

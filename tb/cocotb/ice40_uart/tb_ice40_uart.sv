@@ -12,7 +12,7 @@ module tb_ice40_uart #(
   parameter int ClkHz       = 100_000_000,
   parameter int ClksPerBit  = 8,
   parameter int TimeoutBits = 40,
-  parameter int Features    = 32'h3fff, // the build (svpwm_pkg::Cfg*; the iCEstick: CfgTiny = 1)
+  parameter int Features    = 32'h7fff, // the build (svpwm_pkg::Cfg*; the iCEstick: CfgTiny = 1)
   parameter bit Trim        = 1'b0      // the iCEstick's board cut of the register block
 ) (
   input  logic        rst_ni,

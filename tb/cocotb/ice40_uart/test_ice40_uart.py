@@ -231,7 +231,7 @@ async def id_and_reset_values(dut):
     registers read the idle core; unmapped addresses read 0; RO and unmapped addresses ignore writes."""
     u = await setup(dut)
     assert await u.read(R.ID) == 0x5356_5057
-    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0003_0000
+    assert await u.read(R.VERSION) == R.VERSION.reset == 0x0003_0001
     assert R.CONFIG.decode(await u.read(R.CONFIG)) == {"dt_width": 10, "cnt_width": CNT_WIDTH, "freq_width": 24,
                                                         "phase_width": 34}
     assert await u.read(R.CLK_HZ) == CLK_HZ
@@ -243,12 +243,12 @@ async def id_and_reset_values(dut):
     exp.update({k: v for k, v in live.items() if k in V})
     assert exp["FEATURES"] == R.FEATURES.encode(features=FEATURES, trim=COMPACT)
     assert got == exp, {k: (hex(got[k]), hex(exp[k])) for k in got if got[k] != exp[k]}
-    for a in (R.SIZE, 0x80, 0xFC):
+    for a in (R.SIZE, 0xC0, 0xFC):
         assert await u.read(a) == 0, f"unmapped 0x{a:02x}"
     assert await u.read(R.CLK_HZ.addr + 1) == CLK_HZ          # addr[1:0] are ignored (byte offset in a word)
-    for r in [r for r in R.REGISTERS if r.name not in V or not V[r.name].mask("rw", "w1s", "pulse")] + [0x80]:
+    for r in [r for r in R.REGISTERS if r.name not in V or not V[r.name].mask("rw", "w1s", "pulse")] + [0xC0]:
         await u.write(r, 0xFFFF_FFFF)                           # ignored, still acknowledged
-    assert await u.read(0x80) == 0
+    assert await u.read(0xC0) == 0
     assert await read_all(u, R.REGISTERS) == got
     assert int(dut.gates.value) == 0 and int(dut.led_run_o.value) == 0 and int(dut.led_fault_o.value) == 0
 

@@ -120,8 +120,9 @@ def test_names_come_from_regmap():
     assert ctl.lookup("period") == (R.PERIOD, 0x30, None)
     assert ctl.lookup("CLK_HZ")[1] == 0x58 and ctl.lookup("0x58")[0] is R.CLK_HZ
     assert ctl.lookup("ctrl.MODE") == (R.CTRL, 0x0C, R.CTRL.field("mode"))
-    assert ctl.lookup("0x80") == (None, 0x80, None)
-    for bad in ("NOPE", "CTRL.nope", "0x80.x", "300"):
+    assert ctl.lookup("0xc0") == (None, 0xC0, None)
+    assert ctl.lookup("win_status.recon") == (R.WIN_STATUS, 0x88, R.WIN_STATUS.field("recon"))
+    for bad in ("NOPE", "CTRL.nope", "0xc0.x", "300"):
         with pytest.raises(ValueError):
             ctl.lookup(bad)
 
@@ -202,11 +203,11 @@ def test_status_and_reads():
     assert st["clk_hz"] == "48000000" and st["mode"] == "freq" and st["m"] == "0"
     assert cmd(fb, "read", "period") == "0x00000600  period=1536"
     assert cmd(fb, "read", "status.sector") == "4"
-    assert cmd(fb, "read", "0x80") == "0x00000000"
+    assert cmd(fb, "read", "0xc0") == "0x00000000"
     assert cmd(fb, "read", "CLK_HZ") == "0x02dc6c00  clk_hz=48000000"
     assert cmd(fb, "info").startswith(f"ID 0x53565057 (svpwm), register map {MAP_VERSION}, clock 48000000 Hz")
-    assert cmd(fb, "info").endswith("DtWidth 10, build full (FEATURES.features 0x3fff: freq, vf, polar, ab, dq, dpwm, "
-                                    "sixstep, dtc, carry, dtf, upd, presc, sync, dsp)") and st["build"] == "full"
+    assert cmd(fb, "info").endswith("DtWidth 10, build full (FEATURES.features 0x7fff: freq, vf, polar, ab, dq, dpwm, "
+                                    "sixstep, dtc, carry, dtf, upd, presc, sync, dsp, adc)") and st["build"] == "full"
     dump = cmd(fb, "dump").splitlines()
     assert [line.split()[1] for line in dump] == [r.name for r in R.REGISTERS]
     cmd(fb, "write", "CTRL.mode", "7")
@@ -256,6 +257,12 @@ def test_board_clock_from_clk_hz():
     (["write", "STATUS.sector", "1"], "read-only"),
     (["write", "PERIOD", "0x1_0000_0000"], "32 bits"),
     (["start"], "DT is 0"),
+    (["set-adc-pt", "0", "--count", "65536"], "ADC_PT0.cnt = 65536 is out of range 0 .. 65535"),
+    (["set-adc-pt", "1", "--count", "-1", "--down"], "ADC_PT1.cnt = -1 is out of range 0 .. 65535"),
+    (["set-adc-pt", "0", "--off", "--down"], "--down with --off"),
+    (["set-win-min", "--clocks", "131072"], "WIN_MIN.win_min = 131072 is out of range 0 .. 131071"),
+    (["set-win-min", "--us", "2731"], "minimum window 2731 us = 131088 clocks is out of range: at most 131071"),
+    (["set-win-min", "--us", "0.001"], "less than half a clock"),
 ])
 def test_bad_values_refused_nothing_written(argv, match):
     fb = FakeBoard()
@@ -341,7 +348,7 @@ def test_tiny_trim_board():
     assert R.MP.addr not in fb.regs                    # no MP register on this board
     cmd(fb, "write", "CTRL", "0x35")                   # only present fields: accepted
     assert fb.regs[R.CTRL.addr] == 0x35
-    cmd(fb, "write", "0x80", "1")                      # unmapped in every build: as before
+    cmd(fb, "write", "0xc0", "1")                      # unmapped in every build: as before
     lo = fixed.latencies(config.TINY)["MIN_PERIOD"]    # the tiny build's MinPeriod (SampleLead + 4)
     assert ctl.min_period(config.TINY) == lo == fixed.LITE_MIN_PERIOD and ctl.MIN_PERIOD == fixed.MIN_PERIOD
     with pytest.raises(ValueError, match=f"out of range {lo} .. 4095"):
@@ -357,7 +364,9 @@ def test_tiny_trim_board():
         [r.name for r in R.variant(config.TINY, True)]
     absent = [r for r in R.REGISTERS if not R.built(r, config.TINY, True)]
     assert {r.name for r in absent} == {"THETA", "V1", "V2", "VF_BOOST", "VF_SLOPE", "VF_MMAX", "PRESC",
-                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP", "DTC"}
+                                        "CARRIER", "PERIOD_ACT", "CMP_A", "CMP_B", "CMP_C", "MP", "DTC",
+                                        "ADC_PT0", "ADC_PT1", "WIN_MIN", "WIN_LO_A", "WIN_LO_B", "WIN_LO_C",
+                                        "WIN_HI_A", "WIN_HI_B", "WIN_HI_C", "WIN_STATUS"}
     word = "FEATURES = 0x80000001, tiny"
     refused = {  # command -> what the message names
         ("set-mode", "vf"): "mode vf: not on this board (no vf;",
@@ -427,6 +436,59 @@ def test_minimal_board():
     cmd(fb, "set-period", "--clocks", str(lo))
 
 
+def test_current_sampling():
+    """Feature adc: set-adc-pt writes ADC_PT0 / ADC_PT1 (count, direction, on; --off keeps count and direction),
+    set-win-min WIN_MIN (microseconds rounded to clocks, or clocks), windows decodes the report (WIN_LO_*,
+    WIN_HI_*, WIN_STATUS: readable phases, the one to reconstruct) with WIN_MIN and the points."""
+    fb = FakeBoard()
+    assert cmd(fb, "set-adc-pt", "0", "--count", "100") == "ADC_PT0 = count 100 up"
+    assert fb.regs[R.ADC_PT0.addr] == R.ADC_PT0.encode(cnt=100, en=1) == (1 << 31) | 100
+    assert cmd(fb, "set-adc-pt", "1", "--count", "0x300", "--down") == "ADC_PT1 = count 768 down"
+    assert fb.regs[R.ADC_PT1.addr] == (1 << 31) | (1 << 16) | 0x300
+    assert cmd(fb, "set-adc-pt", "1", "--count", "1536", "--down") == \
+        "ADC_PT1 = count 1536 down (>= the half period 1536: at the peak)"          # PERIOD (PERIOD_ACT reads 0)
+    fb.regs[R.PERIOD_ACT.addr] = 1200                                              # the half period in force
+    assert cmd(fb, "set-adc-pt", "1", "--count", "1300").endswith("(>= the half period 1200: at the peak)")
+    assert cmd(fb, "set-adc-pt", "0", "--count", "0", "--down") == "ADC_PT0 = count 0 down (the valley)"
+    assert cmd(fb, "set-adc-pt", "1", "--off") == "ADC_PT1.en = 0 (off)"
+    assert fb.regs[R.ADC_PT1.addr] == R.ADC_PT1.encode(cnt=1300, dn=0, en=0)       # count and direction kept
+    assert fb.regs[R.ADC_PT0.addr] == R.ADC_PT0.encode(cnt=0, dn=1, en=1)
+    assert cmd(fb, "set-win-min", "--us", "2.5") == "WIN_MIN = 120 clocks (2.5 us)" and fb.regs[R.WIN_MIN.addr] == 120
+    assert cmd(fb, "set-win-min", "--clocks", "131071") == "WIN_MIN = 131071 clocks (2730.65 us)"
+    assert fb.regs[R.WIN_MIN.addr] == 0x1FFFF
+    cmd(fb, "set-win-min", "--clocks", "200")
+    # the report of a running core (the values of the bus test's frozen angle: CMP 52, 245, 247, P 299)
+    for reg, v in zip((R.WIN_LO_A, R.WIN_LO_B, R.WIN_LO_C, R.WIN_HI_A, R.WIN_HI_B, R.WIN_HI_C),
+                      (92, 478, 482, 487, 101, 97)):
+        fb.regs[reg.addr] = v
+    fb.regs[R.WIN_STATUS.addr] = R.WIN_STATUS.encode(ok=0b110, recon=0)
+    fb.status = R.STATUS.encode(running=1)
+    lines = cmd(fb, "windows").splitlines()
+    assert lines == ["running            1",
+                     "phase a            low 92 clocks (1.91667 us) too short, high 487 clocks (10.1458 us)",
+                     "phase b            low 478 clocks (9.95833 us) readable, high 101 clocks (2.10417 us)",
+                     "phase c            low 482 clocks (10.0417 us) readable, high 97 clocks (2.02083 us)",
+                     "reconstruct        a (= -(b + c), from b and c)",
+                     "win_min            200 clocks (4.16667 us)",
+                     "adc_pt0            count 0 down",
+                     "adc_pt1            off"], lines
+    fb.status = 0
+    assert cmd(fb, "windows").splitlines()[0] == "running            0  (the report reads 0 unless running)"
+    # a build without adc (vf): each command refused naming the feature, nothing written
+    fb = FakeBoard(features=config.CONFIGS["vf"])
+    for argv, msg in {("set-adc-pt", "0", "--count", "10"): "set-adc-pt 0: not on this board (no adc;",
+                      ("set-adc-pt", "1", "--off"): "set-adc-pt 1: not on this board (no adc;",
+                      ("set-win-min", "--us", "1"): "set-win-min: not on this board (no adc;",
+                      ("windows",): "windows: not on this board (no adc;",
+                      ("write", "ADC_PT0", "1"): "ADC_PT0: not on this board (no adc;",
+                      ("write", "WIN_MIN.win_min", "1"): "WIN_MIN: not on this board (no adc;"}.items():
+        with pytest.raises(ValueError) as e:
+            cmd(fb, *argv)
+        assert str(e.value).startswith(msg) and "FEATURES = 0x000021e3, vf); nothing written" in str(e.value), \
+            str(e.value)
+    assert fb.writes == []
+
+
 def test_no_answer():
     with pytest.raises(ctl.NoAnswer, match="does not answer"):
         cmd(FakeBoard(answer=False), "read", "ID")
@@ -440,7 +502,8 @@ def _cli(args, env=None, timeout=30):
 
 def test_cli_help_and_port_errors():
     cmds = ["read", "write", "dump", "info", "status", "start", "stop", "clear-fault", "set-freq", "set-m",
-            "set-period", "set-dt", "set-mp", "set-mode", "set-dtc", "set-carry"]
+            "set-period", "set-dt", "set-mp", "set-mode", "set-dtc", "set-carry", "set-adc-pt", "set-win-min",
+            "windows"]
     for c in [[]] + [[c] for c in cmds]:
         r = _cli(c + ["--help"])
         assert r.returncode == 0 and "usage:" in r.stdout, (c, r.stderr)

@@ -12,7 +12,7 @@ module tb_svpwm_bus_regs #(
   parameter int         AddrWidth = 8,
   parameter int         GatePol   = 0,      // int here: -G / -P pass 32-bit values
   parameter int         ClkHz     = 0,      // CLK_HZ value
-  parameter int         Features  = 32'h3fff, // the build (svpwm_pkg::Cfg*; int: -G / -P)
+  parameter int         Features  = 32'h7fff, // the build (svpwm_pkg::Cfg*; int: -G / -P)
   parameter int         Trim      = 0       // 1: the board cut of the register block
 ) (
   input  wire logic                 rst_n,
@@ -49,7 +49,10 @@ module tb_svpwm_bus_regs #(
                                                 //  period_clamp, cfg_err, sat, running}
   input  wire logic [16:0]          carrier,    // {up, count}
   input  wire logic [15:0]          period_act,
-  input  wire logic [47:0]          cmp         // {C_c, C_b, C_a}
+  input  wire logic [47:0]          cmp,        // {C_c, C_b, C_a}
+  input  wire logic [50:0]          win_lo,     // {c, b, a} 17 bits each (WIN_LO_*)
+  input  wire logic [50:0]          win_hi,     // {c, b, a} 17 bits each (WIN_HI_*)
+  input  wire logic [4:0]           win_st      // {recon[1:0], ok[2:0]} (WIN_STATUS)
 );
   logic clk;
   initial clk = 1'b0;
@@ -99,11 +102,16 @@ module tb_svpwm_bus_regs #(
     .ctrl_adc_trig_o(),
     .freq_o(), .m_o(), .theta_o(), .v1_o(), .v2_o(), .vf_boost_o(), .vf_slope_o(), .vf_mmax_o(),
     .period_o(), .dt_dt_o(), .dt_dtf_o(), .dt_dtf_en_o(), .mp_o(), .presc_o(), .dtc_en_o(), .dtc_isign_o(),
+    .adc_pt0_cnt_o(), .adc_pt0_dn_o(), .adc_pt0_en_o(), .adc_pt1_cnt_o(), .adc_pt1_dn_o(), .adc_pt1_en_o(),
+    .win_min_o(),
     .status_running_i(status[0]), .status_sat_i(status[1]), .status_cfg_err_i(status[2]),
     .status_period_clamp_i(status[3]), .status_freq_clamp_i(status[4]), .status_fault_i(status[5]),
     .status_tripped_i(status[6]), .status_locked_i(status[7]), .status_sector_i(status[10:8]),
     .carrier_count_i(carrier[15:0]), .carrier_up_i(carrier[16]), .period_act_i(period_act),
-    .cmp_a_i(cmp[15:0]), .cmp_b_i(cmp[31:16]), .cmp_c_i(cmp[47:32]));
+    .cmp_a_i(cmp[15:0]), .cmp_b_i(cmp[31:16]), .cmp_c_i(cmp[47:32]),
+    .win_lo_a_i(win_lo[16:0]), .win_lo_b_i(win_lo[33:17]), .win_lo_c_i(win_lo[50:34]),
+    .win_hi_a_i(win_hi[16:0]), .win_hi_b_i(win_hi[33:17]), .win_hi_c_i(win_hi[50:34]),
+    .win_status_ok_i(win_st[2:0]), .win_status_recon_i(win_st[4:3]));
 endmodule
 
 `default_nettype wire

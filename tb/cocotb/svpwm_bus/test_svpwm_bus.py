@@ -4,8 +4,11 @@
 Register addresses and fields come only from svpwm_model.regmap (generated from rdl/svpwm.rdl). The
 core is probed hierarchically to check that every register field reaches its core input and every
 RO field reads its core output, and that a write to M while running changes the active compare
-values only at a load point. Register-block details (byte lanes, reserved addresses, back-to-back)
-are covered on the core-less harness in test_svpwm_bus_regs.py.
+values only at a load point; current sampling (feature adc): trigger points written over the bus make
+adc_pt_o pulse at their carrier counts, and the shunt-window report reads what svpwm_model.adc computes
+from CMP_A..C, PERIOD_ACT and DT read over the bus (a build without adc: 0, no pulses). Register-block
+details (byte lanes, reserved addresses, back-to-back) are covered on the core-less harness in
+test_svpwm_bus_regs.py.
 """
 from __future__ import annotations
 
@@ -17,7 +20,7 @@ import cocotb
 from cocotb.triggers import ReadOnly, RisingEdge
 from clocks import clock_cycles
 
-from svpwm_model import fixed
+from svpwm_model import adc, config, fixed
 from svpwm_model import regmap as R
 
 HERE = Path(__file__).resolve().parent
@@ -35,6 +38,8 @@ RO_MAP = {"status_running_i": "running_o", "status_sat_i": "sat_o", "status_cfg_
 # (a field absent in the compact variant resets to 0: "off" is the field, "on" the port)
 OTHER_INPUT = {"dtc_isign_o": "isign_i", "ctrl_vsc_off_o": "vsc_en_i"}
 INVERTED = {"ctrl_vsc_off_o"}
+# fields that drive a slice of a core input (feature adc; CntWidth 16): port -> (input, lsb, width)
+SLICE = {f"adc_pt{k}_{n}_o": (f"adc_pt_{n}_i", k * w, w) for k in range(2) for n, w in (("cnt", 16), ("dn", 1), ("en", 1))}
 
 
 def core_input(f: R.Field) -> str:
@@ -66,7 +71,11 @@ class TB:
         await clock_cycles(d.clk, 2)
 
     def cin(self, f: R.Field) -> int:
-        """The field's value as its core input carries it (inverted for CTRL.vsc_off -> vsc_en_i)."""
+        """The field's value as its core input carries it (inverted for CTRL.vsc_off -> vsc_en_i; the
+        trigger points' slice of adc_pt_*_i)."""
+        if f.port in SLICE:
+            name, lsb, w = SLICE[f.port]
+            return (int(getattr(self.core, name).value) >> lsb) & ((1 << w) - 1)
         v = int(getattr(self.core, core_input(f)).value)
         return 1 - v if f.port in INVERTED else v
 
@@ -220,22 +229,134 @@ async def m_at_load_point_both(dut):
     await _m_steps(tb, upd=2)
 
 
+async def _updates(tb: TB, n: int) -> None:
+    """Wait for n update_o pulses (the points and WIN_MIN written before are in force after 2)."""
+    d = tb.dut
+    for _ in range(n):
+        for _ in range(8 * 65536):
+            await RisingEdge(d.clk)
+            if int(d.update.value):
+                break
+        else:
+            raise AssertionError("no update_o")
+
+
+async def _check_points(tb: TB, pts: tuple[adc.Point, adc.Point], has_adc: bool, periods: int = 3) -> int:
+    """Every clock of `periods` carrier periods: adc_pt_o[k] (the wrapper's output) == adc.fires(point k) at
+    the core's carrier count / direction and PERIOD_ACT, adc_trig_o == their OR (CTRL.adc_trig 0). A
+    build without adc: never. Returns the pulses seen."""
+    d, c = tb.dut, tb.core
+    p = await tb.bus.read(R.PERIOD_ACT.addr)
+    pulses = 0
+    for _ in range(2 * p * periods):
+        await RisingEdge(d.clk)
+        await ReadOnly()
+        count, up, got = int(c.carrier_o.value), bool(int(c.carrier_up_o.value)), int(d.adc_pt.value)
+        exp = sum(int(has_adc and adc.fires(pt, count, up, p)) << k for k, pt in enumerate(pts))
+        assert got == exp, f"adc_pt_o = {got:02b} != {exp:02b} at carrier {count} {'up' if up else 'down'} (P {p}, {pts})"
+        assert int(d.adc_trig.value) == int(got != 0), f"adc_trig_o != adc_pt_o[0] | [1] ({got:02b})"
+        pulses += bin(got).count("1")
+    return pulses
+
+
+async def _check_windows(tb: TB, win_min: int, has_adc: bool) -> adc.Window:
+    """WIN_LO_A..C, WIN_HI_A..C and WIN_STATUS == svpwm_model.adc.window of CMP_A..C, PERIOD_ACT and the dead
+    times read over the bus (static compare values: every read sees the same period)."""
+    cmp = tuple([await tb.bus.read(r.addr) for r in (R.CMP_A, R.CMP_B, R.CMP_C)])
+    p = await tb.bus.read(R.PERIOD_ACT.addr)
+    dt = R.DT.decode(await tb.bus.read(R.DT.addr))
+    run = R.STATUS.decode(await tb.bus.read(R.STATUS.addr))
+    valid = run["running"] and not run["tripped"]
+    exp = adc.window(cmp if valid else None, p, dt["dt"], dt["dtf"] if dt["dtf_en"] else dt["dt"], win_min)
+    lo = tuple([await tb.bus.read(r.addr) for r in (R.WIN_LO_A, R.WIN_LO_B, R.WIN_LO_C)])
+    hi = tuple([await tb.bus.read(r.addr) for r in (R.WIN_HI_A, R.WIN_HI_B, R.WIN_HI_C)])
+    st = R.WIN_STATUS.decode(await tb.bus.read(R.WIN_STATUS.addr))
+    got = adc.Window(lo, hi, st["ok"], st["recon"])
+    if not has_adc:
+        exp = adc.window(None, p, 0, 0, 0)
+    assert got == exp, f"window report {got} != model {exp} (CMP {cmp}, P {p}, DT {dt}, WIN_MIN {win_min})"
+    return got
+
+
+@cocotb.test()
+async def adc_points_and_windows(dut):
+    """Feature adc over the bus: trigger points (up count, down count, the valley, a count beyond P, on a
+    narrower core one beyond its range) make adc_pt_o and adc_trig_o pulse at exactly their carrier counts
+    once they are in force; the shunt-window report equals the model's for the values read over the bus,
+    with WIN_MIN 0, between the windows and beyond every window; 0 when stopped. Without adc (FEATURES):
+    the registers read 0, no pulse, the report 0."""
+    tb = TB(dut)
+    await tb.reset()
+    features = R.FEATURES.decode(await tb.bus.read(R.FEATURES.addr))["features"]
+    assert features == int(os.environ["SVPWM_FEATURES"]), f"FEATURES.features 0x{features:04X}"
+    has_adc = config.has(features, "adc")
+    w = len(tb.core.carrier_o)                        # CntWidth
+    period = MIN_PERIOD + 45
+    await tb.wr(R.PERIOD, period=period)
+    await tb.wr(R.DT, dt=7, dtf=12, dtf_en=1)         # rising 7, falling 12 (a build without dtf: 7 both)
+    await tb.wr(R.M, m=0x6000)
+    await tb.wr(R.FREQ, freq=100000)
+    pts = (adc.Point(True, False, period // 3), adc.Point(True, True, period // 2 + 5))
+    for reg, pt in zip((R.ADC_PT0, R.ADC_PT1), pts):
+        await tb.wr(reg, cnt=pt.cnt, dn=int(pt.dn), en=int(pt.en))
+        exp = reg.encode(cnt=pt.cnt, dn=int(pt.dn), en=int(pt.en)) if has_adc else 0
+        assert await tb.bus.read(reg.addr) == exp, f"{reg.name} does not read back"
+    await tb.wr(R.CTRL, en=1)
+    await clock_cycles(dut.clk, 6 * 200)
+    await tb.wr(R.FREQ, freq=0)                       # the angle stays where it is: static compare values
+    await _updates(tb, 3)
+    n = await _check_points(tb, pts, has_adc)
+    assert n == (6 if has_adc else 0), f"{n} trigger pulses in 3 periods"
+    # the valley (either direction) and a count beyond P: the peak; on a core narrower than 16 bits a count
+    # beyond its range (truncated it would be the valley)
+    beyond = 1 << w if w < 16 else 0xFFFF
+    pts = (adc.Point(True, True, 0), adc.Point(True, False, beyond))
+    for reg, pt in zip((R.ADC_PT0, R.ADC_PT1), pts):
+        await tb.wr(reg, cnt=pt.cnt, dn=int(pt.dn), en=int(pt.en))
+    await _updates(tb, 3)
+    assert await _check_points(tb, pts, has_adc, periods=2) == (4 if has_adc else 0)
+    await tb.wr(R.ADC_PT1, cnt=period // 4, en=0)     # off: point 0 only
+    await _updates(tb, 3)
+    await _check_points(tb, (pts[0], adc.Point(False, False, period // 4)), has_adc, periods=1)
+
+    cmp = [await tb.bus.read(r.addr) for r in (R.CMP_A, R.CMP_B, R.CMP_C)]
+    assert len(set(cmp)) == 3, f"compare values {cmp} not distinct: a swap of phases would not show"
+    win = await _check_windows(tb, 0, has_adc)
+    if has_adc:                                        # plausible: windows inside the period, all readable
+        assert all(0 < x < 2 * period for x in win.lo + win.hi) and win.ok == 7, win
+    mid = sorted(win.lo)[1]                            # WIN_MIN between the windows: two of three readable
+    for win_min in (mid, (1 << (w + 1)) if w < 16 else 0x1FFFF):   # beyond every window (and a narrow core's range)
+        await tb.wr(R.WIN_MIN, win_min=win_min)
+        assert await tb.bus.read(R.WIN_MIN.addr) == (win_min if has_adc else 0)
+        await _updates(tb, 3)
+        win = await _check_windows(tb, win_min, has_adc)
+        if has_adc:
+            assert win.ok == (sum(1 << k for k in range(3) if win.lo[k] >= mid) if win_min == mid else 0), win
+            assert win.ok != 7 and (win_min != mid or win.ok), win
+    await tb.wr(R.CTRL, en=0)                         # stopped: not valid, all 0
+    await clock_cycles(dut.clk, 8)
+    assert await _check_windows(tb, win_min, has_adc) == adc.window(None, 0, 0, 0, 0)
+
+
 import pytest  # noqa: E402
 
 
 # the builds: each bus at CntWidth 16; the AXI4-Lite wrapper also at CntWidth 12 (the RO registers from
-# the core: the compare values' slices of a 12-bit core; the RW fields' walk assumes a 16-bit PERIOD)
-BUILDS = {"axil": ("axil", 16, None), "wb": ("wb", 16, None), "wbc": ("wbc", 16, None),
-          "axil_cnt12": ("axil", 12, "status_from_core")}
+# the core: the compare values' slices of a 12-bit core; the RW fields' walk assumes a 16-bit PERIOD; the
+# trigger points and WIN_MIN beyond its range); the classic Wishbone wrapper also in the build vf (no adc:
+# its registers read 0, no trigger pulses)
+BUILDS = {"axil": ("axil", 16, None, "full"), "wb": ("wb", 16, None, "full"), "wbc": ("wbc", 16, None, "full"),
+          "axil_cnt12": ("axil", 12, ["status_from_core", "adc_points_and_windows"], "full"),
+          "wbc_vf": ("wbc", 16, "adc_points_and_windows", "vf")}
 
 
 @pytest.mark.parametrize("build", list(BUILDS))
 def test_svpwm_bus(sim, build):
     from simrun import rtl_sources, run_sim
 
-    bus, cnt_width, testcase = BUILDS[build]
+    bus, cnt_width, testcase, cfg = BUILDS[build]
     run_sim(sim, toplevel="tb_svpwm_bus", sources=rtl_sources() + [HERE / "tb_svpwm_bus.sv"],
             test_module="test_svpwm_bus", test_dir=HERE,
             parameters={"Bus": {"axil": 0, "wb": 1, "wbc": 2}[bus], "MinPeriod": MIN_PERIOD, "ClkHz": CLK_HZ[bus],
-                        "CntWidth": cnt_width},
-            build_name=build, extra_env={"SVPWM_BUS": bus}, testcase=testcase)
+                        "CntWidth": cnt_width, "Features": config.CONFIGS[cfg]},
+            build_name=build, extra_env={"SVPWM_BUS": bus, "SVPWM_FEATURES": config.CONFIGS[cfg]}, testcase=testcase)

@@ -243,17 +243,23 @@ async def _updates(tb: TB, n: int) -> None:
 
 async def _check_points(tb: TB, pts: tuple[adc.Point, adc.Point], has_adc: bool, periods: int = 3) -> int:
     """Every clock of `periods` carrier periods: adc_pt_o[k] (the wrapper's output) == adc.fires(point k) at
-    the core's carrier count / direction and PERIOD_ACT, adc_trig_o == their OR (CTRL.adc_trig 0). A
-    build without adc: never. Returns the pulses seen."""
+    the core's carrier count / direction of the clock before (the pulse is registered) and PERIOD_ACT,
+    adc_trig_o == their OR (CTRL.adc_trig 0). A build without adc: never. Returns the pulses seen."""
     d, c = tb.dut, tb.core
     p = await tb.bus.read(R.PERIOD_ACT.addr)
     pulses = 0
+    await RisingEdge(d.clk)
+    await ReadOnly()
+    prev = (int(c.carrier_o.value), bool(int(c.carrier_up_o.value)))
     for _ in range(2 * p * periods):
         await RisingEdge(d.clk)
         await ReadOnly()
-        count, up, got = int(c.carrier_o.value), bool(int(c.carrier_up_o.value)), int(d.adc_pt.value)
+        count, up = prev
+        got = int(d.adc_pt.value)
         exp = sum(int(has_adc and adc.fires(pt, count, up, p)) << k for k, pt in enumerate(pts))
-        assert got == exp, f"adc_pt_o = {got:02b} != {exp:02b} at carrier {count} {'up' if up else 'down'} (P {p}, {pts})"
+        assert got == exp, (f"adc_pt_o = {got:02b} != {exp:02b} the clock after carrier {count} "
+                            f"{'up' if up else 'down'} (P {p}, {pts})")
+        prev = (int(c.carrier_o.value), bool(int(c.carrier_up_o.value)))
         assert int(d.adc_trig.value) == int(got != 0), f"adc_trig_o != adc_pt_o[0] | [1] ({got:02b})"
         pulses += bin(got).count("1")
     return pulses
@@ -265,15 +271,16 @@ async def _check_windows(tb: TB, win_min: int, has_adc: bool) -> adc.Window:
     cmp = tuple([await tb.bus.read(r.addr) for r in (R.CMP_A, R.CMP_B, R.CMP_C)])
     p = await tb.bus.read(R.PERIOD_ACT.addr)
     dt = R.DT.decode(await tb.bus.read(R.DT.addr))
+    mp = R.MP.decode(await tb.bus.read(R.MP.addr))["mp"]
     run = R.STATUS.decode(await tb.bus.read(R.STATUS.addr))
     valid = run["running"] and not run["tripped"]
-    exp = adc.window(cmp if valid else None, p, dt["dt"], dt["dtf"] if dt["dtf_en"] else dt["dt"], win_min)
+    exp = adc.window(cmp if valid else None, p, dt["dt"], dt["dtf"] if dt["dtf_en"] else dt["dt"], mp, win_min)
     lo = tuple([await tb.bus.read(r.addr) for r in (R.WIN_LO_A, R.WIN_LO_B, R.WIN_LO_C)])
     hi = tuple([await tb.bus.read(r.addr) for r in (R.WIN_HI_A, R.WIN_HI_B, R.WIN_HI_C)])
     st = R.WIN_STATUS.decode(await tb.bus.read(R.WIN_STATUS.addr))
     got = adc.Window(lo, hi, st["ok"], st["recon"])
     if not has_adc:
-        exp = adc.window(None, p, 0, 0, 0)
+        exp = adc.window(None, p, 0, 0, 0, 0)
     assert got == exp, f"window report {got} != model {exp} (CMP {cmp}, P {p}, DT {dt}, WIN_MIN {win_min})"
     return got
 
@@ -335,7 +342,7 @@ async def adc_points_and_windows(dut):
             assert win.ok != 7 and (win_min != mid or win.ok), win
     await tb.wr(R.CTRL, en=0)                         # stopped: not valid, all 0
     await clock_cycles(dut.clk, 8)
-    assert await _check_windows(tb, win_min, has_adc) == adc.window(None, 0, 0, 0, 0)
+    assert await _check_windows(tb, win_min, has_adc) == adc.window(None, 0, 0, 0, 0, 0)
 
 
 import pytest  # noqa: E402

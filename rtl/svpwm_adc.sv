@@ -137,17 +137,18 @@ module svpwm_adc #(
   // the shared terms, registered step by step (the core's dead-time registers are far away): the inputs,
   // max(dt, dtf), H = max(dt, dtf, mp, 1), then dt + H and 2P - dtf
   logic [DtWidth-1:0]  dt1_q, dtf1_q, mp1_q, m_d, m_q, h_d, h_q;
+  logic                hz_d, hz_q;
   logic [CntWidth-1:0] p1_q;
   logic [DW-1:0]       kdh_d, kdh_q;
-  logic [WW-1:0]       k2p_d, k2p_q, p2_q;
+  logic [WW-1:0]       k2p_d, k2p_q, p2_q, lob_d, lob_q;
 
   assign m_d = (dt1_q >= dtf1_q) ? dt1_q : dtf1_q;
-  always_comb begin
-    h_d = (mp1_q > m_q) ? mp1_q : m_q;
-    if (h_d == '0) h_d = DtWidth'(1);
-  end
-  assign kdh_d = {1'b0, dt1_q} + {1'b0, h_q};
+  // (the floor of 1 beside the max, not after it: H = 0 only when mp and max(dt, dtf) are 0)
+  assign h_d   = (mp1_q > m_q) ? mp1_q : m_q;
+  assign hz_d  = mp1_q == '0 && m_q == '0;
+  assign kdh_d = {1'b0, dt1_q} + {1'b0, h_q | DtWidth'(hz_q)};
   assign k2p_d = {p1_q, 1'b0} - WW'(dtf1_q);
+  assign lob_d = k2p_q - WW'(kdh_q);               // the low side's window after a held high side
 
   // stage 1: the phase's high pole pulse Dh = 2(P - C) (the low side is never held past the pole's rise:
   // r = 0, since the minimum-pulse rule keeps 2C >= 2 (max(dt, dtf) + mp) >= dtf + H)
@@ -169,18 +170,21 @@ module svpwm_adc #(
   assign full_lo1_d = c1 == p1_q;                   // low side on the whole period
   assign full_hi1_d = c1 == '0;
 
-  // stage 2: the high side off at h1 = max(Dh, dt + H) (held on for H)
-  logic [WW-1:0] h1_d, h1_q;
-  logic          full_lo2_q, full_hi2_q, act2_q, act1_q;
+  // stage 2: the high side off at h1 = max(Dh, dt + H) (held on for H): both outcomes, then the compare
+  // (the subtracts beside the compare, so stage 3 only selects)
+  logic [WW-1:0] loa2_d, loa2_q, hia2_d, hia2_q;
+  logic          ge2_d, ge2_q, full_lo2_q, full_hi2_q, act2_q, act1_q;
 
-  assign h1_d = (dh1_q >= WW'(kdh_q)) ? dh1_q : WW'(kdh_q);
+  assign ge2_d  = dh1_q >= WW'(kdh_q);              // h1 = Dh
+  assign loa2_d = k2p_q - dh1_q;                    // 2P - Dh - dtf = 2C - dtf
+  assign hia2_d = dh1_q - WW'(dt1_q);               // Dh - dt
 
   // stage 3: hi = h1 - dt, lo = 2P - h1 - dtf into the phase's result registers
   logic [3*WW-1:0] lo_d, lo_q, hi_d, hi_q;
   logic [WW-1:0]   lo3, hi3;
 
-  assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : k2p_q - h1_q;
-  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q : h1_q - WW'(dt1_q);
+  assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : ge2_q ? loa2_q : lob_q;
+  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q : ge2_q ? hia2_q : WW'(h_q | DtWidth'(hz_q));
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_result
     assign lo_d[ph*WW +: WW] = (ph2_q == 2'(ph)) ? lo3 : lo_q[ph*WW +: WW];
@@ -203,6 +207,7 @@ module svpwm_adc #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       h_q        <= '0;
+      hz_q       <= 1'b1;
       m_q        <= '0;
       dt1_q      <= '0;
       dtf1_q     <= '0;
@@ -218,7 +223,10 @@ module svpwm_adc #(
       full_lo1_q <= 1'b0;
       full_hi1_q <= 1'b0;
       act1_q     <= 1'b0;
-      h1_q       <= '0;
+      ge2_q      <= 1'b0;
+      loa2_q     <= '0;
+      hia2_q     <= '0;
+      lob_q      <= '0;
       full_lo2_q <= 1'b0;
       full_hi2_q <= 1'b0;
       act2_q     <= 1'b0;
@@ -228,6 +236,7 @@ module svpwm_adc #(
       recon_q    <= '0;
     end else begin
       h_q        <= h_d;
+      hz_q       <= hz_d;
       m_q        <= m_d;
       dt1_q      <= dt_i;
       dtf1_q     <= dtf_i;
@@ -243,7 +252,10 @@ module svpwm_adc #(
       full_lo1_q <= full_lo1_d;
       full_hi1_q <= full_hi1_d;
       act1_q     <= active_i;
-      h1_q       <= h1_d;
+      ge2_q      <= ge2_d;
+      loa2_q     <= loa2_d;
+      hia2_q     <= hia2_d;
+      lob_q      <= lob_d;
       full_lo2_q <= full_lo1_q;
       full_hi2_q <= full_hi1_q;
       act2_q     <= act1_q;

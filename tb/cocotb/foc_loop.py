@@ -37,9 +37,8 @@ from clocks import clock_cycles
 from svpwm_model import adc as ADC
 from svpwm_model import fixed, foc
 from svpwm_model import pmsm as PM
-from svpwm_model.analysis import check_legs
 from svpwm_model.core import Inputs
-from svpwm_tb import CLK_NS, CoreTB, dead_time_at, parse_record
+from svpwm_tb import CLK_NS, CoreTB, parse_record, pin_checks
 
 F_CLK = fixed.F_CLK_DEFAULT
 
@@ -279,18 +278,7 @@ async def run_foc(dut, pt: dict) -> tuple[dict, dict]:
     except AssertionError as e:
         res["rtl_equals_model"] = False
         fails.append(f"RTL != model: {e}")
-    res["harness"] = dict(shoot_through_clocks=int(d.shoot_through_count.value),
-                          dead_time_violations=int(d.dead_time_violations.value),
-                          short_pulses=int(d.short_pulse_count.value))
-    try:
-        tb.check_harness()
-    except AssertionError as e:
-        fails.append(str(e))
-    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
-    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
-                       short_pulse=len(legs.short_pulse))
-    if not legs.ok:
-        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
+    pin_checks(tb, rtl, exp, res, fails)
     # the ADC sample instant is the core's trigger (checked where the core has one there: valley / peak, or
     # trigger point 0 with shunts)
     if trig_word or shunts:

@@ -291,6 +291,25 @@ class CoreTB:
         assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
 
 
+def pin_checks(tb: "CoreTB", rtl: RtlRun, exp: Run, res: dict, fails: list) -> None:
+    """For the long runs that collect their failures (demo_runs, foc_loop): the harness's pin-checker counters
+    into res["harness"] and the leg check of the RTL's gate edges into res["legs"]; a failure of either is
+    appended to ``fails``."""
+    d = tb.dut
+    res["harness"] = dict(shoot_through_clocks=int(d.shoot_through_count.value),
+                          dead_time_violations=int(d.dead_time_violations.value),
+                          short_pulses=int(d.short_pulse_count.value))
+    try:
+        tb.check_harness()
+    except AssertionError as e:
+        fails.append(str(e))
+    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
+    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
+                       short_pulse=len(legs.short_pulse))
+    if not legs.ok:
+        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
+
+
 def check_edges(rtl: RtlRun, exp: Run, stop=None, table_i: bool = True, dt_of=None):
     """The checks beyond bit-exactness, from the RTL's own edges: every period against Table I
     (single-update SVPWM only: one symmetric seven-segment pattern per period) and the legs for

@@ -60,7 +60,7 @@ from clocks import clock_cycles
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CLK_NS, CoreTB, dead_time_at
+from svpwm_tb import CLK_NS, CoreTB, dead_time_at, pin_checks
 
 F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
@@ -463,19 +463,7 @@ async def run_dtc_point(dut, pt: dict) -> None:
                      isign_changes=sum(1 for a, b in zip(inputs, inputs[1:]) if a.isign != b.isign),
                      gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges), failures=fails)
     compare_into(tb, rtl, exp, res, fails)
-    h = dict(shoot_through_clocks=int(d.shoot_through_count.value),
-             dead_time_violations=int(d.dead_time_violations.value),
-             short_pulses=int(d.short_pulse_count.value))
-    res["harness"] = h
-    try:
-        tb.check_harness()
-    except AssertionError as e:
-        fails.append(str(e))
-    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
-    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
-                       short_pulse=len(legs.short_pulse))
-    if not legs.ok:
-        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
+    pin_checks(tb, rtl, exp, res, fails)
     # Table I on the core's pole words: with the compensation two phases within a dead time of each other
     # and with opposite currents may cross (fixed.dtc_shift), so it is reported, and checked only without
     seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)

@@ -4,10 +4,11 @@
 // Trigger points: point k fires (pt_o[k], one clock, registered: in the clock after) once per carrier
 // period while the carrier runs, at the clock where the carrier is at count cnt_k counting up (dn_k = 0)
 // or down (dn_k = 1); the valley (count 0) and the peak (count P) are one clock each and fire for either
-// direction, and a count beyond the active half period P fires at the peak. The points (en, dn, cnt) and the minimum window are
-// sampled with the reference (sample_i: the core's sample clock) and take effect with the compare values
-// computed from it (take_i: the update), like a shadow / active register pair, so the trigger points of a
-// period are those of its compare values; none fire while stopped and before the first update of a run.
+// direction, and a count beyond the active half period P fires at the peak. The points (en, dn, cnt)
+// and the minimum window are sampled with the reference (sample_i: the core's sample clock) and take
+// effect with the compare values computed from it (take_i: the update), like a shadow / active register
+// pair, so the trigger points of a period are those of its compare values; none fire while stopped and
+// before the first update of a run.
 // Shunt-window report, per phase x from the active compare value C, half period P, dead times dt (rising:
 // before a high side) and dtf (falling: before a low side) and minimum pulse mp in force: the gates'
 // on-times in the steady state of a period whose neighbours have the same values (svpwm_model/adc.py,
@@ -131,7 +132,7 @@ module svpwm_adc #(
   assign pt_o = pt_q;
 
   // ---- shunt-window report: one phase at a time through a 3-stage pipeline (phase_q turns 0, 1, 2 every
-  // clock), so one datapath serves the three phases (svpwm_model/adc.py: on_times) ------------------------------------------------
+  // clock), so one datapath serves the three phases (svpwm_model/adc.py: on_times) -----------------
   localparam int DW = DtWidth + 1;
 
   // the shared terms, registered step by step (the core's dead-time registers are far away): the inputs,
@@ -184,7 +185,8 @@ module svpwm_adc #(
   logic [WW-1:0]   lo3, hi3;
 
   assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : ge2_q ? loa2_q : lob_q;
-  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q : ge2_q ? hia2_q : WW'(h_q | DtWidth'(hz_q));
+  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q
+             : ge2_q ? hia2_q : WW'(h_q | DtWidth'(hz_q));
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_result
     assign lo_d[ph*WW +: WW] = (ph2_q == 2'(ph)) ? lo3 : lo_q[ph*WW +: WW];

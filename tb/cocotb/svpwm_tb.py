@@ -291,6 +291,17 @@ class CoreTB:
         assert int(d.off_violations.value) == 0, "in-RTL checker: a gate on in reset or while disabled"
 
 
+def compare_into(tb: "CoreTB", rtl: RtlRun, exp: Run, res: dict, fails: list) -> None:
+    """For the long runs that collect their failures (demo_runs, foc_loop): RTL == model on every edge
+    (CoreTB.compare), recorded in res["rtl_equals_model"] and, if not, in fails."""
+    try:
+        tb.compare(rtl, exp)
+        res["rtl_equals_model"] = True
+    except AssertionError as e:
+        res["rtl_equals_model"] = False
+        fails.append(f"RTL != model: {e}")
+
+
 def pin_checks(tb: "CoreTB", rtl: RtlRun, exp: Run, res: dict, fails: list) -> None:
     """For the long runs that collect their failures (demo_runs, foc_loop): the harness's pin-checker counters
     into res["harness"] and the leg check of the RTL's gate edges into res["legs"]; a failure of either is

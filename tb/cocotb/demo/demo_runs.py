@@ -60,20 +60,10 @@ from clocks import clock_cycles
 from svpwm_model import fixed
 from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CLK_NS, CoreTB, dead_time_at, pin_checks
+from svpwm_tb import CLK_NS, CoreTB, compare_into, dead_time_at, pin_checks
 
 F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
-
-
-def compare_into(tb, rtl, exp, res: dict, fails: list) -> None:
-    """RTL == model on every edge (CoreTB.compare), recorded in res["rtl_equals_model"] and, if not, in fails."""
-    try:
-        tb.compare(rtl, exp)
-        res["rtl_equals_model"] = True
-    except AssertionError as e:
-        res["rtl_equals_model"] = False
-        fails.append(f"RTL != model: {e}")
 
 
 def default_periods(f_hz: float, period: int, revs: float = 1) -> int:

@@ -141,7 +141,7 @@ module svpwm_adc #(
   logic                hz_d, hz_q;
   logic [CntWidth-1:0] p1_q;
   logic [DW-1:0]       kdh_d, kdh_q;
-  logic [WW-1:0]       k2p_d, k2p_q, p2_q, lob_d, lob_q;
+  logic [WW-1:0]       k2p_d, k2p_q, lob_d, lob_q, p2;
 
   assign m_d = (dt1_q >= dtf1_q) ? dt1_q : dtf1_q;
   // (the floor of 1 beside the max, not after it: H = 0 only when mp and max(dt, dtf) are 0)
@@ -149,6 +149,7 @@ module svpwm_adc #(
   assign hz_d  = mp1_q == '0 && m_q == '0;
   assign kdh_d = {1'b0, dt1_q} + {1'b0, h_q | DtWidth'(hz_q)};
   assign k2p_d = {p1_q, 1'b0} - WW'(dtf1_q);
+  assign p2    = {p1_q, 1'b0};                     // 2P (a wire: no register of its own)
   assign lob_d = k2p_q - WW'(kdh_q);               // the low side's window after a held high side
 
   // stage 1: the phase's high pole pulse Dh = 2(P - C) (the low side is never held past the pole's rise:
@@ -184,8 +185,8 @@ module svpwm_adc #(
   logic [3*WW-1:0] lo_d, lo_q, hi_d, hi_q;
   logic [WW-1:0]   lo3, hi3;
 
-  assign lo3 = !act2_q ? '0 : full_lo2_q ? p2_q : full_hi2_q ? '0 : ge2_q ? loa2_q : lob_q;
-  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2_q
+  assign lo3 = !act2_q ? '0 : full_lo2_q ? p2 : full_hi2_q ? '0 : ge2_q ? loa2_q : lob_q;
+  assign hi3 = !act2_q ? '0 : full_lo2_q ? '0 : full_hi2_q ? p2
              : ge2_q ? hia2_q : WW'(h_q | DtWidth'(hz_q));
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_result
@@ -215,7 +216,6 @@ module svpwm_adc #(
       dtf1_q     <= '0;
       mp1_q      <= '0;
       p1_q       <= '0;
-      p2_q       <= '0;
       kdh_q      <= '0;
       k2p_q      <= '0;
       phase_q    <= '0;
@@ -244,7 +244,6 @@ module svpwm_adc #(
       dtf1_q     <= dtf_i;
       mp1_q      <= mp_i;
       p1_q       <= period_i;
-      p2_q       <= {p1_q, 1'b0};
       kdh_q      <= kdh_d;
       k2p_q      <= k2p_d;
       phase_q    <= phase_d;

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // svpwm_core: space-vector PWM core -- frequency + modulation index in, six dead-time-protected gates out.
-// Pipeline: phase accumulator (sector + theta') -> the calculator (svpwm_calc: a microcoded datapath on
-// one multiplier with the sine ROM (0..60 deg): every input mode, hexagon clamp, DPWM, minimum pulse)
-// -> up/down carrier -> three comparators -> dead time per leg -> six registered gate outputs.
+// The top only instantiates and wires its stages (no state of its own), in data-path order:
+// configuration (svpwm_config: run, lock, period clamp, the period / dead-time pipeline) -> reference
+// registers (svpwm_reference) -> phase accumulator (svpwm_phase_acc: sector + theta') -> the calculator
+// (svpwm_calc: a microcoded datapath on one multiplier with the sine ROM (0..60 deg): every input mode,
+// hexagon clamp, DPWM, minimum pulse) -> update scheduler and shadow / active registers (svpwm_update)
+// -> up/down carrier (svpwm_carrier) -> three comparators (svpwm_compare) -> dead time per leg
+// (deadtime) -> six registered gate outputs (svpwm_gate_out); current sampling beside (svpwm_adc).
 // Every carrier period follows Minas Table I / AVR495 Table 4-3: symmetric seven segments, V0 split
 // at the start and end, V7 in the middle, one leg switching per transition.
 // Parameters:
@@ -142,28 +146,18 @@ module svpwm_core #(
   output logic                        locked_o         // configuration locked until reset
 );
 
-  // clocks from an input sample (inputs taken in the clock before) to the update point
+  // the lowest legal MinPeriod: the sample lead (svpwm_update: clocks from an input sample to the update
+  // point) + 4
 `ifdef SVPWM_FORMAL_SHORT_LEAD
   // formal/core.sby's cover tasks only (a bounded search does not reach the first update, 250 clocks after
-  // a start); the calculator is cut there, so no latency to cover. Its proofs run at the shipped lead below.
-  localparam int SampleLead     = 2;
+  // a start): svpwm_update's SampleLead is 2 there; the calculator is cut, so no latency to cover. Its
+  // proofs run at the shipped lead below.
   localparam int MinPeriodFloor = 4;
 `else
-  localparam int SampleLead     = svpwm_pkg::sample_lead(Features);       // calculator + load 1
   localparam int MinPeriodFloor = svpwm_pkg::min_period_floor(Features);
 `endif
-  // the features of this build (svpwm_pkg Feat*; the calculator reads its own from Features)
+  // the features of this build the top reads (svpwm_pkg Feat*; each stage reads its own from Features)
   localparam bit HasAcc   = svpwm_pkg::has_acc(Features);      // the phase accumulator
-  localparam bit HasVf    = svpwm_pkg::has(Features, svpwm_pkg::FeatVf);
-  localparam bit HasXy    = svpwm_pkg::has_xy(Features);
-  localparam bit HasDpwm  = svpwm_pkg::has(Features, svpwm_pkg::FeatDpwm);
-  localparam bit HasSix   = svpwm_pkg::has(Features, svpwm_pkg::FeatSixstep);
-  localparam bit HasDtc   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtc);
-  localparam bit HasCarry = svpwm_pkg::has(Features, svpwm_pkg::FeatCarry);
-  localparam bit HasDtf   = svpwm_pkg::has(Features, svpwm_pkg::FeatDtf);
-  localparam bit HasUpd   = svpwm_pkg::has(Features, svpwm_pkg::FeatUpd);
-  localparam bit HasPresc = svpwm_pkg::has(Features, svpwm_pkg::FeatPresc);
-  localparam bit HasSync  = svpwm_pkg::has(Features, svpwm_pkg::FeatSync);
   localparam bit HasAdc   = svpwm_pkg::has(Features, svpwm_pkg::FeatAdc);
   if ((Features & ~svpwm_pkg::CfgAll) != 0 || (Features & svpwm_pkg::ModeFeatures) == 0)
   begin : gen_bad_features
@@ -205,204 +199,234 @@ module svpwm_core #(
 `endif
   end
 
-  // ---- run_q: a register, en_i of the clock before (the modulator starts one clock after en_i rises:
-  // fixed.START_DELAY; en_i low still turns the gates off on the next clock: the legs and poles read
-  // en_i), but not in the first ArmClocks (4) clocks after reset, so that the configuration registers,
-  // the lowest legal period, the clamped period and then the idle loads (period clamped for the dead
-  // time, frequency) all happen before the carrier starts; with sync_en_i, not before a sync_i pulse
-  // (another core's sync_o: the clock before its valley). Every enable of the core reads run_q (or its
-  // twin upd_run) from a flip-flop.
-  logic [svpwm_pkg::ArmClocks-2:0] armed_q;
-  logic       run_d, run_q;
-  // upd_run: for the update logic below (take, pending, valid, the active dead time: ~120 enables) a
-  // second run register, equal to run_q in every clock (formal), with its own feedback so that synthesis
-  // keeps it: one run net for all enables was the iCEBreaker's worst path at 48 MHz (run -> pending_q,
-  // 23 ns). Not in the tiny build (the HX1K is full and fast enough): there upd_run is run_q.
-  logic       upd_run;
+  // ---- the nets between the stages ---------------------------------------------------------------
+  // configuration (svpwm_config)
+  logic                        run, run_next, upd_run, locked, cbc, safe_lo, chg;
+  logic [1:0]                  pol;
+  logic [CntWidth-1:0]         period_load, period_next;
+  logic [DtWidth-1:0]          dt_next, dtf_next, mp_next, dt_act, dtf_act, mp_act;
+  logic                        dtf_gt_next, dtf_gt_act, period_clamp;
+  // the sampled reference (svpwm_reference)
+  logic [2:0]                  ref_mode;
+  logic [15:0]                 ref_s0, ref_s1, ref_s2, ref_fabs;
+  logic [1:0]                  ref_dpwm;
+  logic                        ref_om, ref_dtc, ref_vsc, freq_clamp;
+  logic [2:0]                  ref_isign;
+  logic signed [FreqWidth-1:0] ref_freq;
+  // phase accumulator
+  logic [2:0]                  acc_sector;
+  logic [PhaseWidth-1:0]       acc_angle;
+  // calculator (svpwm_calc) and its operands (svpwm_update)
+  logic                        calc_start, calc_busy, calc_done, calc_sat, calc_err, calc_carry_en;
+  logic [2:0]                  calc_sector;
+  logic [3*CntWidth-1:0]       calc_cmp;
+  logic [CntWidth-1:0]         calc_period;
+  logic [DtWidth:0]            calc_thr;
+  logic [DtWidth-1:0]          calc_hdr, calc_hdf;
+  logic [3*DtWidth+5:0]        calc_carry_in, calc_carry_out;
+  // update scheduler, shadow / active registers (svpwm_update)
+  logic                        upd_sample, upd_smp_valley, upd_take, upd_valid, upd_running;
+  logic [3*CntWidth-1:0]       cmp;
+  // carrier
+  logic [CntWidth-1:0]         count, period_act;
+  logic                        up, valley, peak, pre_peak, load, point;
+  // comparators, dead time, gate output
+  logic [2:0]                  pole, hi_req, lo_req;
+  logic                        pole_valid, trip_sync, brake, hold_a;
+  // current sampling
+  logic [1:0]                  adc_pt;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      armed_q <= '0;
-      run_q   <= 1'b0;
-    end else begin
-      armed_q <= {armed_q[svpwm_pkg::ArmClocks-3:0], 1'b1};
-      run_q   <= run_d;
-    end
+  // ---- configuration: run, lock, the period clamp, the period / dead-time pipeline ---------------
+  svpwm_config #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth), .MinPeriod(MinPeriod),
+                 .GatePol(GatePol)) u_config (
+    .clk_i          (clk_i),
+    .rst_ni         (rst_ni),
+    .en_i           (en_i),
+    .sync_en_i      (sync_en_i),
+    .sync_i         (sync_i),
+    .lock_i         (lock_i),
+    .dt_i           (dt_i),
+    .dtf_i          (dtf_i),
+    .dtf_en_i       (dtf_en_i),
+    .mp_i           (mp_i),
+    .trip_cbc_i     (trip_cbc_i),
+    .safe_lo_i      (safe_lo_i),
+    .pol_i          (pol_i),
+    .period_i       (period_i),
+    .smp_valley_i   (upd_smp_valley),
+    .load_i         (load),
+    .period_act_i   (period_act),
+    .run_o          (run),
+    .run_next_o     (run_next),
+    .upd_run_o      (upd_run),
+    .locked_o       (locked),
+    .cbc_o          (cbc),
+    .safe_lo_o      (safe_lo),
+    .pol_o          (pol),
+    .period_load_o  (period_load),
+    .period_next_o  (period_next),
+    .dt_next_o      (dt_next),
+    .dtf_next_o     (dtf_next),
+    .dtf_gt_next_o  (dtf_gt_next),
+    .mp_next_o      (mp_next),
+    .dt_o           (dt_act),
+    .dtf_o          (dtf_act),
+    .dtf_gt_o       (dtf_gt_act),
+    .mp_o           (mp_act),
+    .chg_o          (chg),
+    .period_clamp_o (period_clamp)
+  );
+
+  // ---- reference registers: taken at an update's sample ------------------------------------------
+  svpwm_reference #(.Features(Features), .FreqWidth(FreqWidth), .FreqMax(FreqMax)) u_reference (
+    .clk_i        (clk_i),
+    .rst_ni       (rst_ni),
+    .run_i        (run),
+    .sample_i     (upd_sample),
+    .mode_i       (mode_i),
+    .freq_i       (freq_i),
+    .m_i          (m_i),
+    .theta_i      (theta_i),
+    .v1_i         (v1_i),
+    .v2_i         (v2_i),
+    .vf_boost_i   (vf_boost_i),
+    .vf_slope_i   (vf_slope_i),
+    .vf_mmax_i    (vf_mmax_i),
+    .dpwm_i       (dpwm_i),
+    .om_i         (om_i),
+    .dtc_en_i     (dtc_en_i),
+    .isign_i      (isign_i),
+    .vsc_en_i     (vsc_en_i),
+    .mode_o       (ref_mode),
+    .s0_o         (ref_s0),
+    .s1_o         (ref_s1),
+    .s2_o         (ref_s2),
+    .dpwm_o       (ref_dpwm),
+    .om_o         (ref_om),
+    .dtc_o        (ref_dtc),
+    .isign_o      (ref_isign),
+    .vsc_o        (ref_vsc),
+    .freq_o       (ref_freq),
+    .fabs_o       (ref_fabs),
+    .freq_clamp_o (freq_clamp)
+  );
+
+  // ---- phase accumulator (FREQ, VF): the split adder (its one chain ends in flip-flops: the chains
+  // behind enables were the iCEBreaker's worst paths at 48 MHz), but in the tiny build (the one chain:
+  // fewer cells, and the HX1K is fast)
+  if (HasAcc) begin : gen_phase
+    svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth),
+                      .Split(!svpwm_pkg::is_tiny(Features))) u_phase (
+      .clk_i    (clk_i),
+      .rst_ni   (rst_ni),
+      .run_i    (run),
+      .step_i   (ref_freq),         // the sampled frequency word steps the angle from the sample on
+      .sector_o (acc_sector),
+      .angle_o  (acc_angle)
+    );
+  end else begin : gen_no_phase     // POLAR / AB / DQ only: the angle comes with the reference
+    logic unused_freq;              // (0: freq_i is not read)
+    assign unused_freq = ^ref_freq;
+    assign acc_sector = '0;
+    assign acc_angle  = '0;
   end
 
-  // a build without the sync start, the update modes or the prescaler ignores those inputs
-  logic       sync_en;
-  logic [1:0] upd_in;
-  logic [7:0] presc_in;
+  // ---- the calculator: reference -> snapped compare values (the modes and features of the build) ----
+  svpwm_calc #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
+    .clk_i      (clk_i),
+    .rst_ni     (rst_ni),
+    .start_i    (calc_start),
+    .abort_i    (!run),
+    .mode_i     (ref_mode),
+    .sector_i   (acc_sector),
+    .angle_i    (calc_start ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held at
+                                                                       // 0 otherwise so simulators do
+                                                                       // not re-evaluate the calculator
+    .theta_i    (ref_s1),
+    .m_i        (ref_s0),
+    .fabs_i     (ref_fabs),
+    .v1_i       (ref_s0),
+    .v2_i       (ref_s2),
+    .vf_boost_i (ref_s0),
+    .vf_slope_i (ref_s1),
+    .vf_mmax_i  (ref_s2),
+    .dpwm_i     (ref_dpwm),
+    .om_i       (ref_om),
+    .period_i   (calc_period),
+    .thr_i      (calc_thr),
+    .isign_i    (ref_isign),
+    .hdr_i      (calc_hdr),
+    .hdf_i      (calc_hdf),
+    .carry_i    (calc_carry_in),
+    .carry_en_i (calc_carry_en),
+    .busy_o     (calc_busy),
+    .done_o     (calc_done),
+    .sector_o   (calc_sector),
+    .cmp_o      (calc_cmp),
+    .sat_o      (calc_sat),
+    .err_o      (calc_err),
+    .carry_o    (calc_carry_out)
+  );
 
-  assign sync_en  = HasSync ? sync_en_i : 1'b0;
-  assign upd_in   = HasUpd ? upd_i : 2'd0;
-  assign presc_in = HasPresc ? presc_i : 8'd0;
-
-  assign run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (run_q || !sync_en || sync_i);
-
-  if (!svpwm_pkg::is_tiny(Features)) begin : gen_upd_run
-    logic upd_run_d, upd_run_q;
-
-    assign upd_run_d = en_i && armed_q[svpwm_pkg::ArmClocks-2] && (upd_run_q || !sync_en || sync_i);
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) upd_run_q <= 1'b0;
-      else         upd_run_q <= upd_run_d;
-    end
-
-    assign upd_run = upd_run_q;
-  end else begin : gen_one_run
-    assign upd_run = run_q;
-  end
-
-  // ---- configuration registers, locked by lock_i until reset ----------------------------------
-  logic               locked_q;
-  logic [DtWidth-1:0] dt_cfg_q, dtf_cfg_q, mp_cfg_q;   // dtf_cfg_q: the falling dead time, dtf_en_i resolved
-  logic [DtWidth-1:0] dtx_cfg_q;                       // max(dt, dtf): registered beside them (timing)
-  logic               cbc_q, safe_lo_q;
-  logic [1:0]         pol_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      locked_q  <= 1'b0;
-      dt_cfg_q  <= '0;
-      dtf_cfg_q <= '0;
-      dtx_cfg_q <= '0;
-      dfg_cfg_q <= 1'b0;
-      mp_cfg_q  <= '0;
-      cbc_q     <= 1'b0;
-      safe_lo_q <= 1'b0;
-      pol_q     <= GatePol;
-    end else begin
-      if (lock_i) locked_q <= 1'b1;
-      if (!locked_q) begin
-        dt_cfg_q  <= dt_i;
-        // (a build without DTF: dtf = dt from here on, in every stage; synthesis merges the copies)
-        dtf_cfg_q <= (HasDtf && dtf_en_i) ? dtf_i : dt_i;
-        dtx_cfg_q <= (HasDtf && dtf_en_i && dtf_i > dt_i) ? dtf_i : dt_i;
-        dfg_cfg_q <= HasDtf && dtf_en_i && dtf_i > dt_i;
-        mp_cfg_q  <= mp_i;
-        cbc_q     <= trip_cbc_i;
-        safe_lo_q <= safe_lo_i;
-        if (!run_q) pol_q <= pol_i;
-      end
-    end
-  end
-
-  // ---- the falling dead time travels beside dt through every stage (configuration, use, next, active),
-  // so both change together at a valley, and so does "dtf > dt" (dfg_*), which selects the larger one
-  // for the calculator's minimum-pulse threshold thr = max(dt, dtf) + mp: a 10-bit compare in front of
-  // that adder would not meet 48 MHz on the UP5K, and a registered max or thr at every stage adds 30
-  // flip-flops to the enables the run_q register drives (the board's slowest path). A build without DTF
-  // has one dead time: its dtf is dt at every stage (its dtf_* / dfg_* flops are never read and not
-  // built) and, without UPD too, its calculator reads dt_next_q + mp_next_q.
-  logic [DtWidth-1:0] dtf_cfg, dtx_cfg, dtf_act;
-  logic [DtWidth-1:0] dtf_use_q, dtf_next_d, dtf_next_q, dtf_d, dtf_q;
-  logic [DtWidth-1:0] dt_use_q, dt_next_q, dt_q;
-  logic               dfg_cfg_q, dfg_use_q, dfg_next_d, dfg_next_q, dfg_d, dfg_q;   // dtf > dt
-  logic [DtWidth-1:0] calc_dtx;
-  logic [DtWidth-1:0] calc_mp;
-
-  assign dtf_cfg  = HasDtf ? dtf_cfg_q : dt_q;        // one dead time: = dtf_act, so no compare (dtf_ne 0)
-  assign dtx_cfg  = HasDtf ? dtx_cfg_q : dt_cfg_q;
-  assign dtf_act  = HasDtf ? dtf_q     : dt_q;
-
-  // ---- input clamps (bad input gets the nearest legal value and a flag) --------------------------
-  logic [CntWidth-1:0]         period_clamped, period_low;
-  logic [DtWidth:0]            thr;             // max(dt, dtf) + minimum pulse
-  logic signed [FreqWidth-1:0] freq_clamped;
-  logic                        period_under, freq_over;
-
-  assign thr            = {1'b0, dtx_cfg} + {1'b0, mp_cfg_q};
-  assign period_low     = (CntWidth'({thr, 1'b0}) > CntWidth'(MinPeriod)) ? CntWidth'({thr, 1'b0})
-                                                                        : CntWidth'(MinPeriod);
-
-  // the lowest legal period is registered (off the sampling paths); dt / mp are used one clock later
-  // too (dt_use_q / mp_use_q), so a period is always clamped for the dead time it is used with
-  logic [CntWidth-1:0] period_low_q;
-  logic [DtWidth-1:0]  mp_use_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      period_low_q <= CntWidth'(MinPeriod);
-      dt_use_q     <= '0;
-      dtf_use_q    <= '0;
-      dfg_use_q    <= 1'b0;
-      mp_use_q     <= '0;
-    end else begin
-      period_low_q <= period_low;
-      dt_use_q     <= dt_cfg_q;
-      dtf_use_q    <= dtf_cfg_q;
-      dfg_use_q    <= dfg_cfg_q;
-      mp_use_q     <= mp_cfg_q;
-    end
-  end
-
-  assign period_under   = period_i < period_low_q;
-
-  assign period_clamped = period_under ? period_low_q : period_i;
-
-  // -(W'(x)), not -W'(x): Yosys 0.70 drops a unary operator in front of a size cast (the simulators do not;
-  // tb/cocotb/svpwm_core/test_svpwm_core_yosys.py checks the clamp on Yosys' netlist)
-  // (a build without FREQ and VF has no phase accumulator: freq_i is not read)
-  assign freq_over      = HasAcc && (freq_i > FreqWidth'(FreqMax) || freq_i < -(FreqWidth'(FreqMax)));
-  assign freq_clamped   = !HasAcc ? '0 : !freq_over ? freq_i : freq_i[FreqWidth-1] ? -(FreqWidth'(FreqMax))
-                                                                                  : FreqWidth'(FreqMax);
+  // ---- update scheduler, the calculator's operands, shadow and active registers --------------------
+  svpwm_update #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth), .MinPeriod(MinPeriod))
+  u_update (
+    .clk_i           (clk_i),
+    .rst_ni          (rst_ni),
+    .en_i            (en_i),
+    .run_i           (run),
+    .upd_run_i       (upd_run),
+    .upd_i           (upd_i),
+    .presc_i         (presc_i),
+    .count_i         (count),
+    .up_i            (up),
+    .load_i          (load),
+    .point_i         (point),
+    .period_load_i   (period_load),
+    .chg_i           (chg),
+    .period_next_i   (period_next),
+    .dt_next_i       (dt_next),
+    .dtf_next_i      (dtf_next),
+    .dtf_gt_next_i   (dtf_gt_next),
+    .mp_next_i       (mp_next),
+    .period_act_i    (period_act),
+    .dt_i            (dt_act),
+    .dtf_i           (dtf_act),
+    .dtf_gt_i        (dtf_gt_act),
+    .mp_i            (mp_act),
+    .dtc_i           (ref_dtc),
+    .vsc_i           (ref_vsc),
+    .trip_i          (trip_sync),
+    .calc_done_i     (calc_done),
+    .calc_cmp_i      (calc_cmp),
+    .calc_sector_i   (calc_sector),
+    .calc_sat_i      (calc_sat),
+    .calc_err_i      (calc_err),
+    .calc_carry_i    (calc_carry_out),
+    .sample_o        (upd_sample),
+    .smp_valley_o    (upd_smp_valley),
+    .calc_start_o    (calc_start),
+    .calc_period_o   (calc_period),
+    .calc_thr_o      (calc_thr),
+    .calc_hdr_o      (calc_hdr),
+    .calc_hdf_o      (calc_hdf),
+    .calc_carry_o    (calc_carry_in),
+    .calc_carry_en_o (calc_carry_en),
+    .take_o          (upd_take),
+    .cmp_o           (cmp),
+    .sector_o        (sector_o),
+    .valid_o         (upd_valid),
+    .running_o       (upd_running),
+    .sat_o           (sat_o),
+    .err_o           (cfg_err_o),
+    .update_o        (update_o)
+  );
 
   // ---- carrier -----------------------------------------------------------------------------------
-  logic [CntWidth-1:0] count, period_act, period_load;
-  logic                up, valley, peak, pre_peak, load;
-  logic                upd_point;   // running, the next clock is a valley or a peak (load || pre_peak)
-
-  logic [CntWidth-1:0] period_next_d, period_next_q;
-  logic [DtWidth-1:0]  dt_next_d, dt_d, mp_next_d, mp_next_q, mp_d, mp_q;
-
-  // the clamped period is registered too (one clock after the port), and so is the comparison that forces
-  // an update (valid in every clock but the one after a load, i.e. at every sample point): the sample
-  // strobes then reach the ~150 register enables they drive straight from flip-flops
-  logic [CntWidth-1:0] period_clamped_q;
-  logic                period_under_q, ne_pin_q, ne_low_q, dtmp_chg_q, chg;
-  // one compare per field, kept, then their OR: 4 LUT levels for the 60 bits (ABC made 7 of the flat
-  // expression on the UP5K, the core's slowest path after the calculator's)
-  (* keep *) logic     dt_ne, dtf_ne, mp_ne;
-
-  assign dt_ne  = dt_cfg_q != dt_q;
-  assign dtf_ne = dtf_cfg != dtf_act;
-  assign mp_ne  = mp_cfg_q != mp_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      period_clamped_q <= CntWidth'(MinPeriod);
-      period_under_q   <= 1'b0;
-      ne_pin_q         <= 1'b0;
-      ne_low_q         <= 1'b0;
-      dtmp_chg_q       <= 1'b0;
-    end else begin
-      period_clamped_q <= period_clamped;
-      period_under_q   <= period_under;
-      ne_pin_q         <= period_i != period_act;
-      ne_low_q         <= period_low_q != period_act;
-      dtmp_chg_q       <= dt_ne || dtf_ne || mp_ne;
-    end
-  end
-
-  // == (period_clamped_q != period_act || dt_use_q != dt_q || dtf_use_q != dtf_act || mp_use_q != mp_q): the
-  // compares are registered side by side (the period one for both sides of the clamp), the clamp's choice
-  // after them
-  assign chg = (period_under_q ? ne_low_q : ne_pin_q) || dtmp_chg_q;
-
-  logic signed [FreqWidth-1:0] freq_d, freq_q;
-  logic                period_clamp_d, period_clamp_q, freq_clamp_d, freq_clamp_q;
-
-  // idle: the clamped port, registered (the carrier's period and period - 1 then start from flip-flops,
-  // not from en_i, the period compare and its mux); the core idles >= 4 clocks after reset (armed_q)
-  assign period_load = run_q ? period_next_q : period_clamped_q;
-
   svpwm_carrier #(.CntWidth(CntWidth), .MinPeriod(MinPeriod)) u_carrier (
     .clk_i      (clk_i),
     .rst_ni     (rst_ni),
-    .run_i      (run_q),
+    .run_i      (run),
     .period_i   (period_load),
     .count_o    (count),
     .up_o       (up),
@@ -411,409 +435,25 @@ module svpwm_core #(
     .peak_o     (peak),
     .pre_peak_o (pre_peak),
     .load_o     (load),
-    .point_o    (upd_point)
+    .point_o    (point)
   );
 
-  // ---- sample points: SampleLead clocks before each valley (count == SampleLead counting down) and
-  // each peak (count == P - SampleLead counting up); the inputs are taken in the clock before (vps, pps),
-  // from registered compares one clock earlier still (count == SampleLead + 2 / P - SampleLead - 2) ----
-  logic [CntWidth-1:0] pl2_d, pl2_q;           // P - SampleLead - 2 of the active period
-  logic                vps_d, vps_q, pps_d, pps_q, vps, pps;
-
-  assign pl2_d = load ? period_load - CntWidth'(SampleLead + 2) : pl2_q;
-  assign vps_d = run_q && !up && count == CntWidth'(SampleLead + 2);
-  assign pps_d = run_q && up && count == pl2_q;
-  assign vps   = run_q && vps_q;
-  assign pps   = run_q && pps_q;
-
-  // ---- update control: which opportunities update (upd, prescaler), forced updates --------------
-  localparam logic [1:0] UpdPeak = 2'd1, UpdBoth = 2'd2;   // 2'd0: valley
-
-  logic       updv_d, updv_q, updp_d, updp_q;   // the update mode as "valley / peak opportunities used"
-  logic       cz_d, cz_q;                       // cnt_d == 0, registered (the prescaler lets this one update)
-  logic       upd_err_d, upd_err_q;
-  logic [7:0] presc_d, presc_q, cnt_d, cnt_q;
-  logic       opp_v, opp_p, forced, event_now;
-
-  assign opp_v     = vps && updv_q;
-  assign opp_p     = pps && updp_q;
-  assign forced    = vps && chg;
-  assign event_now = ((opp_v || opp_p) && cz_q) || forced;
-
-  always_comb begin
-    updv_d    = updv_q;
-    updp_d    = updp_q;
-    upd_err_d = upd_err_q;
-    presc_d   = presc_q;
-    cnt_d     = cnt_q;
-    cz_d      = cz_q;
-    if (opp_v || opp_p) begin
-      cnt_d = (cnt_q >= presc_q) ? '0 : cnt_q + 8'd1;
-      cz_d  = cnt_q >= presc_q;
-    end
-    if (!run_q || vps) begin               // update mode and prescaler: before each valley (or idle)
-      updv_d    = upd_in != UpdPeak;       // an invalid code (3) is a valley update (+ upd_err)
-      updp_d    = upd_in == UpdPeak || upd_in == UpdBoth;
-      upd_err_d = upd_in == 2'd3;
-      presc_d   = presc_in;
-    end
-    if (!run_q) begin
-      cnt_d = '0;
-      cz_d  = 1'b1;
-    end
-  end
-
-  // ---- reference registers: taken at an update's sample. Three 16-bit slots hold the inputs the mode
-  // reads (fixed.input_slots): s0 = m (FREQ, POLAR, invalid) / vf_boost (VF) / v1 (AB, DQ), s1 = theta /
-  // vf_slope (VF), s2 = v2 / vf_mmax (VF); the calculator's ports of one slot share it (a mode never reads
-  // two inputs of one slot, and fixed.modulate reads no input its mode does not use) -----------------
-  logic [2:0]  mode_q;
-  logic [15:0] s0_d, s0_q, s1_d, s1_q, s2_d, s2_q;
-  logic [1:0]  dpwm_q;
-  logic        dtc_q, om_q, vsc_q;
-  logic [2:0]  isign_q;
-  logic        in_vf, in_xy;
-
-  assign in_vf = HasVf && mode_i == 3'(svpwm_pkg::ModeVf);
-  assign in_xy = HasXy && (mode_i == 3'(svpwm_pkg::ModeAb) || mode_i == 3'(svpwm_pkg::ModeDq));
-  assign s0_d  = in_vf ? vf_boost_i : in_xy ? v1_i : m_i;
-  assign s1_d  = in_vf ? vf_slope_i : theta_i;
-  assign s2_d  = in_vf ? vf_mmax_i : v2_i;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      mode_q <= '0;
-      s0_q   <= '0;
-      s1_q   <= '0;
-      s2_q   <= '0;
-      dpwm_q <= '0;
-      dtc_q   <= 1'b0;
-      isign_q <= '0;
-      om_q    <= 1'b0;
-      vsc_q   <= 1'b0;
-    end else if (event_now) begin
-      mode_q <= mode_i;
-      s0_q   <= s0_d;
-      s1_q   <= s1_d;
-      s2_q   <= s2_d;
-      dpwm_q <= HasDpwm ? dpwm_i : 2'd0;
-      dtc_q   <= HasDtc && dtc_en_i;
-      isign_q <= HasDtc ? isign_i : 3'd0;
-      om_q    <= HasSix && om_i;
-      vsc_q   <= HasCarry && vsc_en_i;
-    end
-  end
-
-  // ---- phase accumulator -------------------------------------------------------------------------
-  logic [2:0]            acc_sector;
-  logic [PhaseWidth-1:0] acc_angle;
-
-  // the split adder (its one chain ends in flip-flops: the chains behind enables were the iCEBreaker's
-  // worst paths at 48 MHz), but in the tiny build (the one chain: fewer cells, and the HX1K is fast)
-  if (HasAcc) begin : gen_phase
-    svpwm_phase_acc #(.PhaseWidth(PhaseWidth), .FreqWidth(FreqWidth),
-                      .Split(!svpwm_pkg::is_tiny(Features))) u_phase (
-      .clk_i    (clk_i),
-      .rst_ni   (rst_ni),
-      .run_i    (run_q),
-      .step_i   (freq_q),           // the sampled frequency word steps the angle from the sample on
-      .sector_o (acc_sector),
-      .angle_o  (acc_angle)
-    );
-  end else begin : gen_no_phase     // POLAR / AB / DQ only: the angle comes with the reference
-    assign acc_sector = '0;
-    assign acc_angle  = '0;
-  end
-
-  // |frequency word| >> (FreqWidth - 17) for the V/f law (freq_q is clamped: no overflow), registered:
-  // one clock after freq_q, i.e. from the calculator's first step on (its programs read it in step 1 at
-  // the earliest, as the operand of step 2: model/tests/test_calc_prog.py checks it)
-  logic [FreqWidth-1:0] fmag;
-  logic [15:0]          fabs_d, fabs_q;
-
-  assign fmag = freq_q[FreqWidth-1] ? FreqWidth'(-freq_q) : FreqWidth'(freq_q);
-  if (FreqWidth >= 17) begin : gen_fabs_shr
-    assign fabs_d = fmag[FreqWidth-2 -: 16];
-  end else begin : gen_fabs_shl
-    assign fabs_d = 16'({fmag[FreqWidth-2:0], (17 - FreqWidth)'(0)});
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) fabs_q <= '0;
-    else         fabs_q <= fabs_d;
-  end
-
-  // ---- duty calculator: started in the clock after the sample (event_q) --------------------------
-  logic                  start_q, ev_valley_q, pending_d, pending_q;
-  logic [2:0]            duty_sector;
-  logic                  duty_busy, duty_sat, duty_err;
-  logic [CntWidth-1:0]   calc_period_d, calc_period_q;
-  logic [DtWidth:0]      calc_thr_d, calc_thr_q;
-  logic [DtWidth-1:0]    calc_hdr_d, calc_hdr_q, calc_hdf_d, calc_hdf_q, hd_dt, hd_dtf;
-  // volt-second carry (fixed.snap_carry): per phase what the minimum-pulse rule dropped or widened at the
-  // last update (car_q, for the period car_per_q), given to the next computation for the same period; cleared
-  // while stopped or tripped, and not given across a period change
-  localparam int EW = DtWidth + 2;
-  logic [3*EW-1:0]       car_d, car_q, snap_car;
-  logic                  trip_sync, brake;     // (the trip state: svpwm_gate_out, below)
-  logic [CntWidth-1:0]   car_per_d, car_per_q;
-  logic                  car_ok_d, car_ok_q;
-  logic [1:0]            take_q;               // take, one and two clocks before
-
-  // dead-time compensation amounts for the calculator (fixed.dtc_amounts): ceil(dt / 2) of the rising
-  // (hdr: a positive current loses it) and the falling (hdf: a negative one gains it) dead time the update is
-  // computed for, 0 when off
-  assign hd_dt  = ev_valley_q ? dt_next_q : dt_q;
-  assign hd_dtf = ev_valley_q ? dtf_next_q : dtf_q;
-
-  // a valley update is computed for the period it starts (period_next_q, sampled with it) and the
-  // dead time it comes with; a peak update for the active period and dead time (the larger of dt, dtf
-  // by the registered flag: one mux level before the adder)
-  assign calc_dtx = ev_valley_q ? (dfg_next_q ? dtf_next_q : dt_next_q) : (dfg_q ? dtf_q : dt_q);
-  assign calc_mp  = ev_valley_q ? mp_next_q : mp_q;
-
-  always_comb begin
-    calc_period_d = calc_period_q;
-    calc_thr_d    = calc_thr_q;
-    calc_hdr_d    = calc_hdr_q;
-    calc_hdf_d    = calc_hdf_q;
-    car_ok_d      = car_ok_q;
-    if (start_q) begin
-      calc_period_d = ev_valley_q ? period_next_q : period_act;
-      calc_thr_d    = {1'b0, calc_dtx} + {1'b0, calc_mp};
-      calc_hdr_d    = dtc_q ? DtWidth'(({1'b0, hd_dt} + 1'b1) >> 1) : '0;
-      calc_hdf_d    = dtc_q ? DtWidth'(({1'b0, hd_dtf} + 1'b1) >> 1) : '0;
-      car_ok_d      = vsc_q && calc_period_d == car_per_q;
-    end
-  end
-
-  // ---- the calculator: reference -> snapped compare values (the modes and features of the build) ----
-  logic [3*CntWidth-1:0] snap_cmp;
-  logic                  snap_done;
-
-  svpwm_calc #(.Features(Features), .CntWidth(CntWidth), .DtWidth(DtWidth)) u_calc (
-    .clk_i      (clk_i),
-    .rst_ni     (rst_ni),
-    .start_i    (start_q && run_q),
-    .abort_i    (!run_q),
-    .mode_i     (mode_q),
-    .sector_i   (acc_sector),
-    .angle_i    (start_q ? acc_angle[PhaseWidth-1 -: 16] : 16'd0),   // read only at start_i; held at 0
-                                                                    // otherwise so simulators do not
-                                                                    // re-evaluate the calculator every clock
-    .theta_i    (s1_q),
-    .m_i        (s0_q),
-    .fabs_i     (fabs_q),
-    .v1_i       (s0_q),
-    .v2_i       (s2_q),
-    .vf_boost_i (s0_q),
-    .vf_slope_i (s1_q),
-    .vf_mmax_i  (s2_q),
-    .dpwm_i     (dpwm_q),
-    .om_i       (om_q),
-    // a build without the peak / double update updates at valleys only (start_q implies ev_valley_q): it
-    // reads the next-period registers directly, which hold from the sample to the next valley's sample (a
-    // whole period > the computation), and with one dead time dt_next_q + mp_next_q; calc_period_q /
-    // calc_thr_q are then removed by synthesis (80 LC on the HX1K). Otherwise calc_period_q / calc_thr_q,
-    // loaded at the start and valid from the first step on (the programs read them at step 2 at the
-    // earliest: model/tests/test_calc_prog.py checks it)
-    .period_i   (!HasUpd ? period_next_q : calc_period_q),
-    .thr_i      ((!HasUpd && !HasDtf) ? {1'b0, dt_next_q} + {1'b0, mp_next_q} : calc_thr_q),
-    .isign_i    (isign_q),
-    .hdr_i      (calc_hdr_q),
-    .hdf_i      (calc_hdf_q),
-    .carry_i    (car_q),                   // (car_q changes only after the computation's done_o)
-    .carry_en_i (car_ok_q),
-    .busy_o     (duty_busy),
-    .done_o     (snap_done),
-    .sector_o   (duty_sector),
-    .cmp_o      (snap_cmp),
-    .sat_o      (duty_sat),
-    .err_o      (duty_err),
-    .carry_o    (snap_car)
-  );
-
-  // ---- shadow and active registers ---------------------------------------------------------------
-  logic [3*CntWidth-1:0] cmp_d, cmp_q;
-  logic [2:0]            sector_d, sector_q;
-  logic                  valid_d, valid_q, sat_d, sat_q, err_d, err_q, update_d, update_q, take;
-
-  // new compare values are taken at a load strobe (the clock before a valley or a peak) exactly when
-  // the computation of an update finishes (SampleLead is the pipeline length)
-  // (upd_point: load || pre_peak while running, from the carrier's flip-flops, not from run_q)
-  assign take = upd_run && pending_q && snap_done && upd_point;
-
-  always_comb begin
-    freq_d         = freq_q;
-    period_next_d  = period_next_q;
-    dt_next_d      = dt_next_q;
-    dtf_next_d     = dtf_next_q;
-    dfg_next_d     = dfg_next_q;
-    mp_next_d      = mp_next_q;
-    period_clamp_d = period_clamp_q;
-    freq_clamp_d   = freq_clamp_q;
-    dt_d           = dt_q;
-    dtf_d          = dtf_q;
-    dfg_d          = dfg_q;
-    mp_d           = mp_q;
-    cmp_d          = cmp_q;
-    sector_d       = sector_q;
-    valid_d        = valid_q;
-    sat_d          = sat_q;
-    err_d          = err_q;
-    update_d       = 1'b0;
-    pending_d      = pending_q;
-    car_d          = car_q;
-    car_per_d      = car_per_q;
-    if (!run_q || event_now) begin        // the frequency word steps the angle from the sample on
-      freq_d         = freq_clamped;
-      freq_clamp_d   = freq_over;
-    end
-    if (!run_q || vps) begin              // period, dead time, minimum pulse: before every valley
-      period_next_d  = period_clamped_q;
-      dt_next_d      = dt_use_q;
-      dtf_next_d     = dtf_use_q;
-      dfg_next_d     = dfg_use_q;
-      mp_next_d      = mp_use_q;
-      period_clamp_d = period_under_q;
-    end
-    if (start_q) pending_d = 1'b1;
-    if (!upd_run) begin                    // idle: nothing valid, dead time follows the configuration
-      dt_d      = dt_use_q;
-      dtf_d     = dtf_use_q;
-      dfg_d     = dfg_use_q;
-      mp_d      = mp_use_q;
-      valid_d   = 1'b0;
-      pending_d = 1'b0;
-    end else begin
-      if (load) begin                      // valley: period (in the carrier), dead time, minimum pulse
-        dt_d  = dt_next_q;
-        dtf_d = dtf_next_q;
-        dfg_d = dfg_next_q;
-        mp_d  = mp_next_q;
-      end
-      if (take) begin                      // update point: all three phases together
-        cmp_d     = snap_cmp;
-        sector_d  = duty_sector;
-        sat_d     = duty_sat;
-        err_d     = duty_err;
-        valid_d   = 1'b1;
-        update_d  = 1'b1;
-        pending_d = 1'b0;
-      end
-      if (take_q[1]) begin                 // the calculator's carry_o: valid two clocks after done_o
-        car_d     = vsc_q ? snap_car : '0;
-        car_per_d = calc_period_q;
-      end
-    end
-    if (!upd_run || trip_sync) car_d = '0; // a stop or a trip: no carry into the next start
-  end
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      updv_q         <= 1'b1;
-      updp_q         <= 1'b0;
-      cz_q           <= 1'b1;
-      upd_err_q      <= 1'b0;
-      presc_q        <= '0;
-      cnt_q          <= '0;
-      pl2_q          <= '0;
-      vps_q          <= 1'b0;
-      pps_q          <= 1'b0;
-      start_q        <= 1'b0;
-      ev_valley_q    <= 1'b0;
-      pending_q      <= 1'b0;
-      calc_period_q  <= CntWidth'(MinPeriod);
-      calc_thr_q     <= '0;
-      calc_hdr_q     <= '0;
-      calc_hdf_q     <= '0;
-      car_ok_q       <= 1'b0;
-      take_q         <= '0;
-      car_q          <= '0;
-      car_per_q      <= CntWidth'(MinPeriod);
-      freq_q         <= '0;
-      period_next_q  <= CntWidth'(MinPeriod);
-      dt_next_q      <= '0;
-      dtf_next_q     <= '0;
-      dfg_next_q     <= 1'b0;
-      mp_next_q      <= '0;
-      period_clamp_q <= 1'b0;
-      freq_clamp_q   <= 1'b0;
-      dt_q           <= '0;
-      dtf_q          <= '0;
-      dfg_q          <= 1'b0;
-      mp_q           <= '0;
-      cmp_q          <= '0;
-      sector_q       <= '0;
-      valid_q        <= 1'b0;
-      sat_q          <= 1'b0;
-      err_q          <= 1'b0;
-      update_q       <= 1'b0;
-    end else begin
-      updv_q         <= updv_d;
-      updp_q         <= updp_d;
-      cz_q           <= cz_d;
-      upd_err_q      <= upd_err_d;
-      presc_q        <= presc_d;
-      cnt_q          <= cnt_d;
-      pl2_q          <= pl2_d;
-      vps_q          <= vps_d;
-      pps_q          <= pps_d;
-      start_q        <= run_q && event_now;
-      ev_valley_q    <= vps;
-      pending_q      <= pending_d;
-      calc_period_q  <= calc_period_d;
-      calc_thr_q     <= calc_thr_d;
-      calc_hdr_q     <= calc_hdr_d;
-      calc_hdf_q     <= calc_hdf_d;
-      car_ok_q       <= car_ok_d;
-      take_q         <= {take_q[0], take};
-      car_q          <= car_d;
-      car_per_q      <= car_per_d;
-      freq_q         <= freq_d;
-      period_next_q  <= period_next_d;
-      dt_next_q      <= dt_next_d;
-      dtf_next_q     <= dtf_next_d;
-      dfg_next_q     <= dfg_next_d;
-      mp_next_q      <= mp_next_d;
-      period_clamp_q <= period_clamp_d;
-      freq_clamp_q   <= freq_clamp_d;
-      dt_q           <= dt_d;
-      dtf_q          <= dtf_d;
-      dfg_q          <= dfg_d;
-      mp_q           <= mp_d;
-      cmp_q          <= cmp_d;
-      sector_q       <= sector_d;
-      valid_q        <= valid_d;
-      sat_q          <= sat_d;
-      err_q          <= err_d;
-      update_q       <= update_d;
-    end
-  end
-
-  // ---- comparators and dead time -----------------------------------------------------------------
-  logic [2:0] pole;
-  logic       pole_valid;
-
+  // ---- comparators -------------------------------------------------------------------------------
   svpwm_compare #(.CntWidth(CntWidth)) u_compare (
     .clk_i   (clk_i),
     .rst_ni  (rst_ni),
-    .run_i   (en_i && run_q && valid_q), // en_i: the poles stop with the gates
+    .run_i   (upd_running),         // en_i && run && valid: the poles stop with the gates
     .count_i (count),
     .up_i    (up),
-    .cmp_i   (cmp_q),
+    .cmp_i   (cmp),
     .pole_o  (pole),
     .valid_o (pole_valid)
   );
 
-  // trip state as the (synchronous) dead-time FSMs see it: synchronised fault or latched trip
-  logic [2:0] hi_req, lo_req;
-
-  assign brake = trip_sync && safe_lo_q;
-
-  // the reset hold (no gate on for 2^DtWidth - 1 clocks after a reset) is the same for the three legs:
-  // leg a computes it from its counter (hold_a), legs b and c take it (their hold_o is not read)
-  logic hold_a;
+  // ---- dead time per leg; the trip state as the (synchronous) dead-time FSMs see it. The reset hold
+  // (no gate on for 2^DtWidth - 1 clocks after a reset) is the same for the three legs: leg a computes
+  // it from its counter (hold_a), legs b and c take it (their hold_o is not read)
+  assign brake = trip_sync && safe_lo;
 
   for (genvar ph = 0; ph < 3; ph++) begin : gen_leg
     logic hold_leg;                 // this leg's hold_o (a separate net per leg: no false loop)
@@ -826,12 +466,12 @@ module svpwm_core #(
     deadtime #(.DtWidth(DtWidth), .HoldIn(ph != 0)) u_deadtime (
       .clk_i   (clk_i),
       .rst_ni  (rst_ni),
-      .en_i    (trip_sync ? safe_lo_q : (en_i && pole_valid)),   // (pole_valid implies run_q: formal)
+      .en_i    (trip_sync ? safe_lo : (en_i && pole_valid)),   // (pole_valid implies run: formal)
       .brake_i (brake),
       .pole_i  (pole[ph]),
-      .dt_i    (dt_q),              // deadtime reads them a clock ahead: new dead times and minimum
+      .dt_i    (dt_act),            // deadtime reads them a clock ahead: new dead times and minimum
       .dtf_i   (dtf_act),           // pulse act on the gates from the clock after the valley
-      .mp_i    (mp_q),
+      .mp_i    (mp_act),
       .hold_i  (hold_a),
       .hold_o  (hold_leg),
       .hi_o    (hi_req[ph]),
@@ -847,10 +487,10 @@ module svpwm_core #(
     .lo_i          (lo_req),
     .fault_i       (fault_i),
     .fault_clear_i (fault_clear_i),
-    .cbc_i         (cbc_q),
+    .cbc_i         (cbc),
     .valley_i      (valley),
-    .safe_lo_i     (safe_lo_q),
-    .pol_i         (pol_q),
+    .safe_lo_i     (safe_lo),
+    .pol_i         (pol),
     .gate_hi_o     (gate_hi_o),
     .gate_lo_o     (gate_lo_o),
     .fault_o       (fault_o),
@@ -859,29 +499,27 @@ module svpwm_core #(
   );
 
   // ---- current sampling (feature ADC): trigger points and the shunt-window report ------------------
-  logic [1:0] adc_pt;
-
   if (HasAdc) begin : gen_adc
     svpwm_adc #(.CntWidth(CntWidth), .DtWidth(DtWidth)) u_adc (
       .clk_i       (clk_i),
       .rst_ni      (rst_ni),
-      .run_i       (run_q),
+      .run_i       (run),
       .count_i     (count),
       .up_i        (up),
       .valley_i    (valley),
       .peak_i      (peak),
       .period_i    (period_act),
-      .sample_i    (event_now),
-      .take_i      (take),
+      .sample_i    (upd_sample),
+      .take_i      (upd_take),
       .pt_en_i     (adc_pt_en_i),
       .pt_dn_i     (adc_pt_dn_i),
       .pt_cnt_i    (adc_pt_cnt_i),
       .win_min_i   (win_min_i),
-      .active_i    (en_i && run_q && valid_q && !trip_sync),
-      .cmp_i       (cmp_q),
-      .dt_i        (dt_q),
+      .active_i    (upd_running && !trip_sync),
+      .cmp_i       (cmp),
+      .dt_i        (dt_act),
       .dtf_i       (dtf_act),
-      .mp_i        (mp_q),
+      .mp_i        (mp_act),
       .pt_o        (adc_pt),
       .win_lo_o    (win_lo_o),
       .win_hi_o    (win_hi_o),
@@ -890,7 +528,7 @@ module svpwm_core #(
     );
   end else begin : gen_no_adc       // valley / peak triggers only; the points and window inputs not read
     logic unused_adc;
-    assign unused_adc  = ^{adc_pt_en_i, adc_pt_dn_i, adc_pt_cnt_i, win_min_i};
+    assign unused_adc  = ^{adc_pt_en_i, adc_pt_dn_i, adc_pt_cnt_i, win_min_i, upd_take};
     assign adc_pt      = '0;
     assign win_lo_o    = '0;
     assign win_hi_o    = '0;
@@ -899,28 +537,24 @@ module svpwm_core #(
   end
 
   // the accumulator's low bits set the frequency resolution only; the duty calculator takes the top 16;
-  // pre_peak: take reads upd_point (the formal properties read pre_peak)
+  // pre_peak, upd_valid: the update reads point, the formal properties read them
   logic unused_acc;
-  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], duty_busy, fmag[FreqWidth-1], pre_peak};
+  assign unused_acc = ^{acc_angle[PhaseWidth-17:0], calc_busy, pre_peak, upd_valid};
 
   assign pole_o         = pole;
   assign carrier_o      = count;
   assign carrier_up_o   = up;
   assign valley_o       = valley;
   assign peak_o         = peak;
-  assign update_o       = update_q;
   assign adc_trig_o     = (valley && adc_trig_i[0]) || (peak && adc_trig_i[1]) || adc_pt != 2'b00;
   assign adc_pt_o       = adc_pt;
-  assign sync_o         = run_d && load;     // the next clock is a valley (a synced core starts with it)
-  assign sector_o       = sector_q;
-  assign cmp_o          = cmp_q;
+  assign sync_o         = run_next && load;   // the next clock is a valley (a synced core starts with it)
+  assign cmp_o          = cmp;
   assign period_o       = period_act;
-  assign running_o      = en_i && run_q && valid_q;
-  assign sat_o          = sat_q;
-  assign cfg_err_o      = err_q || upd_err_q;
-  assign period_clamp_o = period_clamp_q;
-  assign freq_clamp_o   = freq_clamp_q;
-  assign locked_o       = locked_q;
+  assign running_o      = upd_running;
+  assign period_clamp_o = period_clamp;
+  assign freq_clamp_o   = freq_clamp;
+  assign locked_o       = locked;
 
 `ifdef FORMAL
   // Core-level properties (formal/core.sby proves them with the duty calculator, phase accumulator and
@@ -929,65 +563,43 @@ module svpwm_core #(
   always_ff @(posedge clk_i) f_past_valid <= 1'b1;
   always_comb if (!f_past_valid) assume (!rst_ni);
 
-  always_comb if (rst_ni) assert (upd_run == run_q);    // the twin run register
-
   logic f_enabled_q;                                  // the core has run since reset
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni)   f_enabled_q <= 1'b0;
-    else if (run_q)  f_enabled_q <= 1'b1;
+    else if (run)  f_enabled_q <= 1'b1;
   end
 
   logic [2:0] f_hi, f_lo;                             // gate on/off at the pins, polarity undone
-  assign f_hi = gate_hi_o ^ {3{pol_q[0]}};
-  assign f_lo = gate_lo_o ^ {3{pol_q[1]}};
+  assign f_hi = gate_hi_o ^ {3{pol[0]}};
+  assign f_lo = gate_lo_o ^ {3{pol[1]}};
 
   // a leg never has both gates on, at the pins
   always_comb assert ((f_hi & f_lo) == 3'b000);
   // safe state during reset and until enabled: no high side on (low sides only when braking on a trip)
   always_comb if (!rst_ni) assert (f_hi == 3'b000 && f_lo == 3'b000);
-  always_comb if (!f_enabled_q) assert (f_hi == 3'b000 && !valid_q && !pole_valid);
-  always_comb if (!f_enabled_q && !safe_lo_q) assert (f_lo == 3'b000 || tripped_o == 1'b0);
+  always_comb if (!f_enabled_q) assert (f_hi == 3'b000 && !upd_valid && !pole_valid);
+  always_comb if (!f_enabled_q && !safe_lo) assert (f_lo == 3'b000 || tripped_o == 1'b0);
   // fault asserted => high sides off in the same cycle (and the low sides unless braking)
   always_comb if (fault_i) assert (f_hi == 3'b000);
-  always_comb if (fault_i && !safe_lo_q) assert (f_lo == 3'b000);
+  always_comb if (fault_i && !safe_lo) assert (f_lo == 3'b000);
   // the carrier stays in [0, P] (P is never below MinPeriod once loaded, never 0); compare values,
   // dead time and minimum pulse change only at a load point
   always_comb if (rst_ni) assert (count <= period_act && period_act != '0);
-  always_comb if (rst_ni) assert (period_next_q >= CntWidth'(MinPeriod));
   always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni) begin
-    if (cmp_q != $past(cmp_q)) assert (($past(load) || $past(pre_peak)) && $past(run_q));
-    if (dt_q != $past(dt_q) || dtf_act != $past(dtf_act) || mp_q != $past(mp_q)) assert ($past(load));
+    if (cmp != $past(cmp)) assert (($past(load) || $past(pre_peak)) && $past(run));
+    if (dt_act != $past(dt_act) || dtf_act != $past(dtf_act) || mp_act != $past(mp_act))
+      assert ($past(load));
   end
-  // without the update modes the calculator reads period_next_q / dt_next_q + mp_next_q: valley updates only
-  // (the update mode stays "valley", so every computation starts from a valley sample)
-  always_comb if (!HasUpd && rst_ni) assert (updv_q && !updp_q);
-  always_comb if (rst_ni) assert (cz_q == (cnt_q == '0));
-  always_comb if (!HasUpd && rst_ni && start_q) assert (ev_valley_q);
   // the poles are valid only while the core runs (the legs' enable reads en_i and pole_valid alone)
-  always_comb if (rst_ni && pole_valid) assert (run_q);
-  // a locked configuration does not change
-  always_ff @(posedge clk_i) if (f_past_valid && $past(rst_ni) && rst_ni && $past(locked_q))
-    assert (locked_q && dt_cfg_q == $past(dt_cfg_q) && dtf_cfg_q == $past(dtf_cfg_q) && mp_cfg_q == $past(mp_cfg_q)
-            && pol_q == $past(pol_q) && safe_lo_q == $past(safe_lo_q) && cbc_q == $past(cbc_q));
+  always_comb if (rst_ni && pole_valid) assert (run);
   // not vacuous: gates switch, trips happen and release, compare values load
   always_comb cover (rst_ni && f_hi[0] && running_o);
-  always_comb cover (rst_ni && f_lo[1] && running_o && dt_q > DtWidth'(2));
-  // asymmetric dead times in force and gates switching (builds with DTF; the others have one dead time);
-  // the registered max(dt, dtf) and thresholds are those of the dead times beside them
-  if (HasDtf) begin : gen_f_dtf
-    function automatic logic [DtWidth:0] f_thr(input logic [DtWidth-1:0] dt, input logic [DtWidth-1:0] dtf,
-                                               input logic [DtWidth-1:0] mp);
-      f_thr = {1'b0, (dt >= dtf) ? dt : dtf} + {1'b0, mp};
-    endfunction
-    always_comb if (rst_ni) begin
-      assert (dtx_cfg_q == ((dt_cfg_q >= dtf_cfg_q) ? dt_cfg_q : dtf_cfg_q));
-      assert (dfg_cfg_q == (dtf_cfg_q > dt_cfg_q) && dfg_use_q == (dtf_use_q > dt_use_q));
-      assert (dfg_next_q == (dtf_next_q > dt_next_q) && dfg_q == (dtf_q > dt_q));
-      if (start_q) assert (calc_thr_d == f_thr(ev_valley_q ? dt_next_q : dt_q, ev_valley_q ? dtf_next_q : dtf_q,
-                                               ev_valley_q ? mp_next_q : mp_q));
-    end
-    always_comb cover (rst_ni && f_hi[2] && running_o && dt_q > DtWidth'(1) && dtf_q > dt_q && locked_q);
-    always_comb cover (rst_ni && f_lo[0] && running_o && dtf_q > DtWidth'(1) && dt_q > dtf_q);
+  always_comb cover (rst_ni && f_lo[1] && running_o && dt_act > DtWidth'(2));
+  // asymmetric dead times in force and gates switching (builds with DTF; the others have one dead time)
+  if (svpwm_pkg::has(Features, svpwm_pkg::FeatDtf)) begin : gen_f_dtf
+    always_comb cover (rst_ni && f_hi[2] && running_o && dt_act > DtWidth'(1) && dtf_act > dt_act
+                       && locked);
+    always_comb cover (rst_ni && f_lo[0] && running_o && dtf_act > DtWidth'(1) && dt_act > dtf_act);
   end
   // ---- issue 27: dead time at the pins across resets and trips. The monitors have no reset
   // (declaration values; they sample rst_ni like any input), so a reset does not make them forget the
@@ -995,14 +607,14 @@ module svpwm_core #(
   // by the reset: F1). f_rel_q: clocks since the release (0 in the release clock), saturating at
   // CntMax + 1; per leg, f_*off_q: clocks the pin has been off before this one, f_*off_dt_q: the other
   // gate's dead time in force in the first clock it was off, f_*off_rst_q: a reset came since it went off.
-  // (deadtime reads dt_q / dtf_act a clock ahead: the dead time in force is their value a clock ago.)
+  // (deadtime reads dt_act / dtf_act a clock ahead: the dead time in force is their value a clock ago.)
   localparam logic [31:0] FW = DtWidth + 1;
   localparam logic [FW-1:0] FSat = {1'b1, {DtWidth{1'b0}}};   // 2^DtWidth = CntMax + 1
   logic [FW-1:0]      f_rel_q = '0;
   logic [DtWidth-1:0] f_dtu_q = '0, f_dtfu_q = '0;
   always_ff @(posedge clk_i) begin
     f_rel_q  <= !rst_ni ? '0 : (f_rel_q >= FSat) ? FSat : f_rel_q + 1'b1;
-    f_dtu_q  <= dt_q;
+    f_dtu_q  <= dt_act;
     f_dtfu_q <= dtf_act;
   end
   always_comb assert (f_rel_q <= FSat);
@@ -1017,7 +629,7 @@ module svpwm_core #(
       f_hoff_q     <= f_hi[ph] ? '0 : (f_hoff_q >= FSat) ? FSat : f_hoff_q + 1'b1;
       f_loff_q     <= f_lo[ph] ? '0 : (f_loff_q >= FSat) ? FSat : f_loff_q + 1'b1;
       if (f_hi[ph]) f_hoff_dt_q <= dtf_act;
-      if (f_lo[ph]) f_loff_dt_q <= dt_q;
+      if (f_lo[ph]) f_loff_dt_q <= dt_act;
       f_hoff_rst_q <= f_hi[ph] ? 1'b0 : (f_hoff_rst_q || !rst_ni);
       f_loff_rst_q <= f_lo[ph] ? 1'b0 : (f_loff_rst_q || !rst_ni);
     end
@@ -1044,12 +656,12 @@ module svpwm_core #(
   always_ff @(posedge clk_i) if (f_hi[0]) f_hi_ever_q <= 1'b1;
   // (builds with peak updates: with valley updates only (minimal, tiny) the first gate, a high side that
   // the reset then cuts, and the hold come too late for the cover depth, 30)
-  if (HasUpd) begin : gen_f_f1_cover
+  if (svpwm_pkg::has(Features, svpwm_pkg::FeatUpd)) begin : gen_f_f1_cover
     always_ff @(posedge clk_i) if (f_past_valid)
-      cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo_q && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
+      cover (rst_ni && f_lo[0] && !$past(f_lo[0]) && safe_lo && gen_f_leg[0].f_hoff_rst_q && f_hi_ever_q);
   end
   always_ff @(posedge clk_i) cover (f_past_valid && $past(tripped_o) && !tripped_o && running_o);
-  always_ff @(posedge clk_i) cover (f_past_valid && rst_ni && cmp_q != $past(cmp_q) && locked_q);
+  always_ff @(posedge clk_i) cover (f_past_valid && rst_ni && cmp != $past(cmp) && locked);
 `endif
 
 endmodule

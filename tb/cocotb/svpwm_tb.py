@@ -56,7 +56,7 @@ class Clock(NamedTuple):
     hi: int              # gate_hi_o {c, b, a} (1 = on, whatever the pin polarity)
     lo: int              # gate_lo_o
     pclamp: int          # period_clamp_o
-    carry: int           # the core's volt-second carry register (u_core.car_q, {c, b, a} packed)
+    carry: int           # the core's volt-second carry register (u_core.calc_carry_in, {c, b, a} packed)
 
 
 def _diff(name: str, got: list, exp: list) -> str:

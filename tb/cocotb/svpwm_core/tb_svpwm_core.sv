@@ -172,8 +172,8 @@ module tb_svpwm_core #(
 
   // pins -> gate on/off (undo the polarity in force, so the checks below speak of switches)
   logic [2:0] gate_hi_pin, gate_lo_pin;
-  assign gate_hi_o = u_core.pol_q[0] ? ~gate_hi_pin : gate_hi_pin;
-  assign gate_lo_o = u_core.pol_q[1] ? ~gate_lo_pin : gate_lo_pin;
+  assign gate_hi_o = u_core.pol[0] ? ~gate_hi_pin : gate_hi_pin;
+  assign gate_lo_o = u_core.pol[1] ? ~gate_lo_pin : gate_lo_pin;
 
   assign mon = {pole_o, gate_lo_o, gate_hi_o};
 
@@ -244,7 +244,8 @@ module tb_svpwm_core #(
   always @(posedge clk) if (rec_fd != 0 && trace_i === 1'b1) begin
     #1;
     $fwrite(rec_fd, "C %0d %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h %0h\n", $time, valley_o, peak_o, period_o,
-            adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o, u_core.car_q);
+            adc_trig_o, carrier_o, tripped_o, fault_o, gate_hi_o, gate_lo_o, period_clamp_o,
+            u_core.calc_carry_in);
     $fflush(rec_fd);
   end
   assign trip_violations_o       = trip_violations;
@@ -254,7 +255,7 @@ module tb_svpwm_core #(
   assign trip_gap_violations_o   = trip_gap_violations;
 
   // ---- per-clock safety checker on the pins (polarity undone) ------------------------------------
-  // Uses the dead times and minimum pulse the core has in force (u_core.dt_q / dtf_act / mp_q, themselves
+  // Uses the dead times and minimum pulse the core has in force (u_core.dt_act / dtf_act / mp_act, themselves
   // checked against the model by the bit-exact tests) and the configuration registers for the lock check.
   //   shoot_through_count:  clocks with both gates of a leg on
   //   dead_time_violations: a high side turned on less than dt (a low side: dtf) after the other gate of
@@ -302,7 +303,7 @@ module tb_svpwm_core #(
   localparam logic [63:0] CntMax = (64'd1 << DtWidth) - 1;
   logic [DtWidth-1:0] dt_live = '0, dtf_live = '0, rst_dt = '0, rst_dtf = '0;
   always @(negedge clk) if (rst_ni === 1'b1) begin
-    dt_live  <= u_core.dt_q;
+    dt_live  <= u_core.dt_act;
     dtf_live <= u_core.dtf_act;
   end
   always @(negedge rst_ni) begin
@@ -328,7 +329,8 @@ module tb_svpwm_core #(
   assign rise_lo = gate_lo_o & ~lo_prev;
   assign fall_hi = hi_prev & ~gate_hi_o;
   assign fall_lo = lo_prev & ~gate_lo_o;
-  assign cfg     = {u_core.dt_cfg_q, u_core.dtf_cfg_q, u_core.mp_cfg_q, u_core.pol_q, u_core.safe_lo_q, u_core.cbc_q};
+  assign cfg     = {u_core.u_config.dt_cfg_q, u_core.u_config.dtf_cfg_q, u_core.u_config.mp_cfg_q, u_core.pol,
+                    u_core.safe_lo, u_core.cbc};
 
   initial begin
     shoot_through_count  = 0;
@@ -363,9 +365,9 @@ module tb_svpwm_core #(
   always @(posedge clk) begin
     cyc     <= cyc + 1;
     rst_falls_seen <= rst_falls;
-    dt_dec  <= u_core.dt_q;
+    dt_dec  <= u_core.dt_act;
     dtf_dec <= u_core.dtf_act;
-    mp_dec  <= u_core.mp_q;
+    mp_dec  <= u_core.mp_act;
     hi_prev <= gate_hi_o;
     lo_prev <= gate_lo_o;
     en_prev <= en_i;
@@ -376,21 +378,21 @@ module tb_svpwm_core #(
         && (gate_hi_o != '0 || gate_lo_o != '0))
       off_violations <= off_violations + 1;
     if ((fault_i || u_core.u_gate_out.latch_q) && gate_hi_o != '0) trip_violations <= trip_violations + 1;
-    if ((fault_i || u_core.u_gate_out.latch_q) && !u_core.safe_lo_q && gate_lo_o != '0)
+    if ((fault_i || u_core.u_gate_out.latch_q) && !u_core.safe_lo && gate_lo_o != '0)
       trip_violations <= trip_violations + 1;
     // lock: capture at the first locked clock, then nothing may change until reset
     if (rst_evt) lk_valid <= 1'b0;         // (a reset pulse between two clock edges unlocks too)
-    else if (u_core.locked_q && !lk_valid) begin
+    else if (u_core.locked && !lk_valid) begin
       lk_valid <= 1'b1;
       lk_cfg   <= cfg;
     end else if (lk_valid && lk_cfg != cfg)
       lock_violations <= lock_violations + 1;
     if ((gate_hi_o & gate_lo_o) != '0) shoot_through_count <= shoot_through_count + 1;
     // the trip gap: the pins safe in every clock the trip holds
-    if (trip_chk && (gate_hi_o != '0 || (!u_core.safe_lo_q && gate_lo_o != '0))) begin
+    if (trip_chk && (gate_hi_o != '0 || (!u_core.safe_lo && gate_lo_o != '0))) begin
       trip_gap_violations <= trip_gap_violations + 1;
       $display("%t tb_svpwm_core: tripped, gates hi %b lo %b (safe_lo %b)", $time, gate_hi_o, gate_lo_o,
-               u_core.safe_lo_q);
+               u_core.safe_lo);
     end
     rst_prev <= rst_ni;
     if (rst_ni && (rst_falls != rst_falls_seen || !rst_prev)) rel_cyc <= cyc;   // edge 1 after a release

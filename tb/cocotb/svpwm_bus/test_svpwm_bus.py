@@ -288,9 +288,9 @@ async def _check_windows(tb: TB, win_min: int, has_adc: bool) -> adc.Window:
 @cocotb.test()
 async def adc_points_and_windows(dut):
     """Feature adc over the bus: trigger points (up count, down count, the valley, a count beyond P, on a
-    narrower core one beyond its range) make adc_pt_o and adc_trig_o pulse at exactly their carrier counts
-    once they are in force; the shunt-window report equals the model's for the values read over the bus,
-    with WIN_MIN 0, between the windows and beyond every window; 0 when stopped. Without adc (FEATURES):
+    narrower core one beyond its range, in either register) make adc_pt_o and adc_trig_o pulse at exactly their
+    carrier counts once they are in force; the shunt-window report equals the model's for the values read over
+    the bus, with WIN_MIN 0, between the windows (the middle one's width and one more) and beyond every window; 0 when stopped. Without adc (FEATURES):
     the registers read 0, no pulse, the report 0."""
     tb = TB(dut)
     await tb.reset()
@@ -317,11 +317,12 @@ async def adc_points_and_windows(dut):
     # the valley (either direction) and a count beyond P: the peak; on a core narrower than 16 bits a count
     # beyond its range (truncated it would be the valley)
     beyond = 1 << w if w < 16 else 0xFFFF
-    pts = (adc.Point(True, True, 0), adc.Point(True, False, beyond))
-    for reg, pt in zip((R.ADC_PT0, R.ADC_PT1), pts):
-        await tb.wr(reg, cnt=pt.cnt, dn=int(pt.dn), en=int(pt.en))
-    await _updates(tb, 3)
-    assert await _check_points(tb, pts, has_adc, periods=2) == (4 if has_adc else 0)
+    for pts in ((adc.Point(True, True, 0), adc.Point(True, False, beyond)),      # each register's clamp
+                (adc.Point(True, True, beyond + 3 if w < 16 else 0xFFFE), adc.Point(True, False, 0))):
+        for reg, pt in zip((R.ADC_PT0, R.ADC_PT1), pts):
+            await tb.wr(reg, cnt=pt.cnt, dn=int(pt.dn), en=int(pt.en))
+        await _updates(tb, 3)
+        assert await _check_points(tb, pts, has_adc, periods=2) == (4 if has_adc else 0)
     await tb.wr(R.ADC_PT1, cnt=period // 4, en=0)     # off: point 0 only
     await _updates(tb, 3)
     await _check_points(tb, (pts[0], adc.Point(False, False, period // 4)), has_adc, periods=1)
@@ -331,15 +332,16 @@ async def adc_points_and_windows(dut):
     win = await _check_windows(tb, 0, has_adc)
     if has_adc:                                        # plausible: windows inside the period, all readable
         assert all(0 < x < 2 * period for x in win.lo + win.hi) and win.ok == 7, win
-    mid = sorted(win.lo)[1]                            # WIN_MIN between the windows: two of three readable
-    for win_min in (mid, (1 << (w + 1)) if w < 16 else 0x1FFFF):   # beyond every window (and a narrow core's range)
+    mid = sorted(win.lo)[1]                            # WIN_MIN between the windows: two of three readable,
+    top = (1 << (w + 1)) if w < 16 else 0x1FFFF        # one more: one; beyond every window (a narrow core's range)
+    for win_min in (mid, mid + 1, top):
         await tb.wr(R.WIN_MIN, win_min=win_min)
         assert await tb.bus.read(R.WIN_MIN.addr) == (win_min if has_adc else 0)
         await _updates(tb, 3)
         win = await _check_windows(tb, win_min, has_adc)
         if has_adc:
-            assert win.ok == (sum(1 << k for k in range(3) if win.lo[k] >= mid) if win_min == mid else 0), win
-            assert win.ok != 7 and (win_min != mid or win.ok), win
+            assert win.ok == (sum(1 << k for k in range(3) if win.lo[k] >= win_min) if win_min != top else 0), win
+            assert win.ok != 7 and (win_min == top or win.ok), win
     await tb.wr(R.CTRL, en=0)                         # stopped: not valid, all 0
     await clock_cycles(dut.clk, 8)
     assert await _check_windows(tb, win_min, has_adc) == adc.window(None, 0, 0, 0, 0, 0)

@@ -288,8 +288,8 @@ RESET_ZERO_OUTPUTS = ("running_o", "update_o", "sat_o", "cfg_err_o", "period_cla
 async def config_and_safety(dut):
     """The inputs the long tests leave at one value, each in a short exact check (the full core; the compact
     core ignores V/f and the prescaler and runs the same steps in FREQ mode):
-    * in reset every status output and every gate is 0 (valid configuration, en_i high), period_clamp_o
-      stays 0 after the release;
+    * in reset every status output and every gate is 0 (valid configuration, en_i high; and clocked with the
+      frequency word, period and mode out of range), period_clamp_o stays 0 after the release;
     * the core runs exactly ARM_CLOCKS clocks after the reset release when en_i is already high; period_o
       is MinPeriod (the reset value of the registered clamped period) in the first clock, then period_i;
     * V/f at a reverse frequency (m from |f|) with updates at both points and prescaler 2, == model;
@@ -321,6 +321,15 @@ async def config_and_safety(dut):
     # in reset (valid configuration, en_i high): every status output and every gate is at its reset value 0
     status = {n: int(getattr(dut, n).value) for n in RESET_ZERO_OUTPUTS}
     assert not any(status.values()), f"outputs in reset: {status}"
+    # and with inputs out of range in reset (the one frequency word beyond the default FreqMax, a period
+    # below the minimum, an invalid mode), clocked: still 0 (the clamp flags are registers held in reset)
+    tb.set_inputs(replace(vf, freq=-(1 << (len(dut.freq_i) - 1)), period=3, mode=7))
+    await clock_cycles(dut.clk, 3)
+    await FallingEdge(dut.clk)
+    status = {n: int(getattr(dut, n).value) for n in RESET_ZERO_OUTPUTS}
+    assert not any(status.values()), f"outputs in reset, inputs out of range: {status}"
+    tb.set_inputs(vf)
+    await FallingEdge(dut.clk)
     dut.rst_ni.value = 1
     got0 = await tb.per_clock(fixed.ARM_CLOCKS + 2)
     got = [(k.valley, k.period) for k in got0]

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from simrun import rtl_sources
+from simrun import RTL_OVERRIDE, rtl_sources
 from svpwm_model import config, fixed
 
 REPO = Path(__file__).resolve().parents[3]
@@ -30,7 +30,8 @@ def test_freq_clamp_in_yosys(compact, fmax):
     out = REPO / "build" / "yosys_clamp" / f"c{compact}_{fmax}"         # relative paths: the YoWASP sandbox
     out.mkdir(parents=True, exist_ok=True)
     rel = out.relative_to(REPO)
-    srcs = " ".join(str(f.relative_to(REPO)) for f in rtl_sources())
+    # (scripts/mutate.py: the mutant's copy of rtl/, under build/)
+    srcs = " ".join(str(f.resolve().relative_to(REPO)) for f in rtl_sources(RTL_OVERRIDE and Path(RTL_OVERRIDE)))
     cmds = [f"read_verilog -sv {srcs}",
             f"chparam -set Features {config.TINY if compact else config.FULL} -set FreqMax {fmax} svpwm_reference",
             "prep -top svpwm_reference", "flatten"]

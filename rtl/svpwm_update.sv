@@ -21,7 +21,8 @@
 // Parameters: Features - the build (UPD, PRESC read here; SampleLead = svpwm_pkg::sample_lead(Features));
 //             CntWidth, DtWidth, MinPeriod as svpwm_core's.
 // Latency: calc_start_o the clock after sample_o; the active registers the clock after take_o;
-//          calc_carry_o two clocks after take_o.
+//          calc_carry_o three clocks after take_o (the calculator's carry_o, valid two clocks after its
+//          done_o, is registered then).
 `default_nettype none
 
 module svpwm_update #(

